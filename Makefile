@@ -1,0 +1,38 @@
+# Two commands on a fresh Debian 12 machine: `make demo` and `make test`.
+# Both install the Debian packages the build needs (apt-get, as root or through sudo),
+# configure a Release build in build/ and build it.
+
+BUILD ?= build
+JOBS ?= $(shell nproc)
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
+                   libbenchmark-dev libopenmesh-dev libtinyobjloader-dev
+
+.PHONY: deps build demo test bench clean
+
+deps:
+	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing Debian packages:" $$missing; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
+	fi
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMEANDER_BUILD_BENCH=ON > /dev/null
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	./$(BUILD)/meander generate pretzel -o out/pretzel.obj
+	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.obj --triangles out/pretzel_cycle.obj --verbose
+	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.svg
+	@echo "demo: outputs are in out/"
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	bench/run.sh
+
+clean:
+	rm -rf $(BUILD) out

@@ -1,0 +1,76 @@
+// Core types: the polygon mesh that readers and writers speak, and closed polylines.
+// Plain structs of flat arrays with int32 index handles; no pointers between elements.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace meander {
+
+// Positions are float: every common mesh format stores float32, and it halves the
+// memory of the largest arrays. Geometry that needs precision promotes to double.
+struct Vec3 {
+  float x = 0, y = 0, z = 0;
+
+  friend Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+  friend Vec3 operator*(float s, Vec3 a) { return a * s; }
+  friend bool operator==(Vec3 a, Vec3 b) = default;
+};
+
+inline double dot(Vec3 a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) {
+  return {float(double(a.y) * b.z - double(a.z) * b.y), float(double(a.z) * b.x - double(a.x) * b.z),
+          float(double(a.x) * b.y - double(a.y) * b.x)};
+}
+inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+struct Box3 {
+  Vec3 min{INFINITY, INFINITY, INFINITY};
+  Vec3 max{-INFINITY, -INFINITY, -INFINITY};
+  void extend(Vec3 p);
+  bool empty() const { return min.x > max.x; }
+  double diagonal() const { return empty() ? 0.0 : norm(max - min); }
+};
+Box3 bounding_box(std::span<const Vec3> points);
+
+// A polygon mesh: positions plus faces in CSR form. Face f has the vertices
+// face_vertices[face_start[f] .. face_start[f+1]); face_start has num_faces()+1 entries
+// and starts with 0. Corner c = face_start[f] + i is also the halfedge from vertex i
+// to vertex i+1 (cyclically) of face f.
+struct PolygonMesh {
+  std::vector<Vec3> positions;
+  std::vector<int32_t> face_start{0};
+  std::vector<int32_t> face_vertices;
+
+  int32_t num_vertices() const { return int32_t(positions.size()); }
+  int32_t num_faces() const { return int32_t(face_start.size()) - 1; }
+  int32_t num_corners() const { return int32_t(face_vertices.size()); }
+  int32_t face_size(int32_t f) const { return face_start[f + 1] - face_start[f]; }
+  std::span<const int32_t> face(int32_t f) const {
+    return {face_vertices.data() + face_start[f], size_t(face_size(f))};
+  }
+  void add_face(std::span<const int32_t> vertices) {
+    face_vertices.insert(face_vertices.end(), vertices.begin(), vertices.end());
+    face_start.push_back(int32_t(face_vertices.size()));
+  }
+  void add_face(std::initializer_list<int32_t> vertices) { add_face(std::span(vertices.begin(), vertices.size())); }
+};
+
+// Closed polylines (the curves): polyline k has the points
+// points[start[k] .. start[k+1]) and closes back to its first point.
+struct Polylines {
+  std::vector<Vec3> points;
+  std::vector<int32_t> start{0};
+
+  int32_t size() const { return int32_t(start.size()) - 1; }
+  std::span<const Vec3> polyline(int32_t k) const {
+    return {points.data() + start[k], size_t(start[k + 1] - start[k])};
+  }
+};
+
+} // namespace meander

@@ -1,0 +1,76 @@
+#include "test_support.h"
+
+#include <fcntl.h>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace meander::test {
+
+std::filesystem::path shared_meshes() { return MEANDER_SHARED_MESHES; }
+
+std::filesystem::path output_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
+  for (char& c : name)
+    if (c == '/') c = '_';
+  const std::filesystem::path dir = std::filesystem::path(MEANDER_TEST_OUTPUT) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path write_file(std::string_view name, std::string_view text) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string dir_name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
+  for (char& c : dir_name)
+    if (c == '/') c = '_';
+  const std::filesystem::path dir = std::filesystem::path(MEANDER_TEST_OUTPUT) / dir_name;
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+namespace {
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+} // namespace
+
+CommandResult run_cli(const std::vector<std::string>& args) {
+  char out_template[] = "/tmp/meander_test_out_XXXXXX";
+  char err_template[] = "/tmp/meander_test_err_XXXXXX";
+  const int out_fd = mkstemp(out_template);
+  const int err_fd = mkstemp(err_template);
+  CommandResult result;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(out_fd, 1);
+    dup2(err_fd, 2);
+    std::vector<char*> argv;
+    std::string cli = MEANDER_CLI;
+    argv.push_back(cli.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(cli.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  close(out_fd);
+  close(err_fd);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.out = slurp(out_template);
+  result.err = slurp(err_template);
+  std::filesystem::remove(out_template);
+  std::filesystem::remove(err_template);
+  return result;
+}
+
+} // namespace meander::test

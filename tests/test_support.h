@@ -1,0 +1,39 @@
+// Helpers shared by the test files: where the real meshes are, a fresh output folder
+// per test, and running the CLI as a user would.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace meander::test {
+
+// ../shared/meshes (set by CMake); tests that need it skip when it is absent.
+std::filesystem::path shared_meshes();
+
+#define MEANDER_REQUIRE_SHARED_MESHES()                                                                 \
+  do {                                                                                                  \
+    if (!std::filesystem::is_directory(::meander::test::shared_meshes()))                              \
+      GTEST_SKIP() << "real meshes not found at " << ::meander::test::shared_meshes()                  \
+                   << " (configure with -DMEANDER_SHARED_MESHES=...)";                                  \
+  } while (0)
+
+// An empty folder for the current test: build/tests/output/<Suite>.<Test>/.
+std::filesystem::path output_dir();
+
+// Writes `text` to a file in output_dir() and returns its path.
+std::filesystem::path write_file(std::string_view name, std::string_view text);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs the meander CLI with the given arguments (no shell: each argument as is).
+CommandResult run_cli(const std::vector<std::string>& args);
+
+} // namespace meander::test
