@@ -1,0 +1,35 @@
+// From the triangle cycle to a smooth closed curve (paper Section 3, "Control Vertex
+// Position Computation", and the B-spline / Catmull-Rom curves it mentions).
+#pragma once
+
+#include "meander/hamiltonian.h"
+#include "meander/mesh.h"
+
+#include <string_view>
+
+namespace meander {
+
+// One control point per triangle of each cycle, at the paper's weighted centre
+// (2 p_apex + p + n) / 4: the triangle read as a quad whose apex is doubled. O(triangles).
+Polylines control_polygons(const QuadMesh& quads, const TriangleCycle& cycle);
+
+enum class Smoothing {
+  bspline,     // uniform cubic B-spline approximating the control polygon (C2)
+  catmull_rom, // centripetal Catmull-Rom interpolating it (no cusps or self-loops per segment)
+  none,        // the control polygon itself
+};
+
+// Parses "bspline" | "catmull-rom" | "none"; throws UsageError otherwise.
+Smoothing parse_smoothing(std::string_view name);
+
+struct CurveOptions {
+  Smoothing smoothing = Smoothing::bspline;
+  int samples = 4; // points per control polygon segment, >= 1
+};
+
+// Samples each closed control polygon into a closed smooth polyline with
+// options.samples points per segment (none: the control polygon as is). O(output).
+// Throws UsageError if samples < 1 or samples * points exceeds 2^31.
+Polylines smooth_curves(const Polylines& control, const CurveOptions& options = {});
+
+} // namespace meander

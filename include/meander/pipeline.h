@@ -1,0 +1,47 @@
+// The whole curve pipeline as one call, used the same way by the CLI, the server and
+// the tests: a repaired polygon mesh in, the quad mesh, its Hamiltonian cycles and the
+// smooth curves out, with the time each stage took.
+#pragma once
+
+#include "meander/curve.h"
+#include "meander/hamiltonian.h"
+#include "meander/quadrangulate.h"
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace meander {
+
+enum class Quadrangulation { dual_simplest, catmull_clark, none };
+
+// Parses "dual-simplest" | "catmull-clark" | "none"; throws UsageError otherwise.
+Quadrangulation parse_quadrangulation(std::string_view name);
+
+struct CurveJob {
+  Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
+  CycleOptions cycle;
+  CurveOptions curve;
+};
+
+// Wall-clock seconds per stage, in the order the stages ran.
+using StageTimes = std::vector<std::pair<std::string, double>>;
+
+struct CurveResult {
+  QuadMesh quads;
+  TriangleCycle cycle;
+  Polylines curves; // one closed curve per connected component
+};
+
+// Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh
+// that repair() accepted. Takes the mesh by value so its memory is released as soon as
+// the quad mesh exists. Appends to `times` if given. Throws TopologyError for a quad
+// mesh with boundary under --quad catmull-clark or none, and what the stages throw.
+CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times = nullptr);
+
+// The certificate of the cycle: the triangulated quad mesh with its triangles in cycle
+// order, one group per cycle (write it with MeshWriteOptions::group_start = cycle_start).
+PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle);
+
+} // namespace meander

@@ -1,0 +1,158 @@
+#include "meander/hamiltonian.h"
+
+#include "meander/error.h"
+#include "union_find.h"
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+namespace meander {
+
+namespace {
+
+// A triangle is named by its quad and its apex corner. Diagonal 0 (corners 0-2) leaves
+// the apexes 1 and 3, diagonal 1 (corners 1-3) the apexes 0 and 2; its two quad sides
+// are apex-1 and apex. Its slot 2q + (apex >= 2) indexes per-triangle arrays.
+inline int32_t slot(int32_t q, int apex) { return 2 * q + (apex >= 2); }
+
+// The apex of the triangle of quad side `side` under diagonal d.
+inline int apex_of_side(int side, uint8_t d) { return (side & 1) != d ? side : (side + 1) & 3; }
+
+// Walks the loop through triangle (q0, a0), leaving it first through side a0, and calls
+// visit(q, apex) for each triangle once, starting with (q0, a0).
+template <typename Visit>
+void walk_loop(const QuadMesh& m, const std::vector<uint8_t>& diagonal, int32_t q0, int a0, Visit&& visit) {
+  int32_t q = q0;
+  int a = a0, out = a0;
+  do {
+    visit(q, a);
+    const int32_t next = m.neighbors[size_t(q)][size_t(out)];
+    q = next >> 2;
+    const int in = next & 3;
+    a = apex_of_side(in, diagonal[size_t(q)]);
+    out = a == in ? (a + 3) & 3 : a;
+  } while (q != q0 || a != a0);
+}
+
+void require_closed_sides(const QuadMesh& m) {
+  for (int32_t q = 0; q < m.num_quads(); ++q)
+    for (int k = m.is_half(q) ? 2 : 0; k < 4; ++k)
+      if (m.neighbors[size_t(q)][size_t(k)] < 0)
+        throw TopologyError("quad " + std::to_string(q) + " side " + std::to_string(k) +
+                            " lies on a boundary: this quad mesh has boundary edges, and Taubin's cycle "
+                            "needs a closed quad mesh (use --quad dual-simplest, which handles boundaries)");
+}
+
+} // namespace
+
+TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) {
+  require_closed_sides(m);
+  const int32_t nq = m.num_quads();
+  TriangleCycle result;
+  result.diagonal.assign(size_t(nq), 0);
+
+  // With every quad split along corners 0-2 the triangles form disjoint loops (each
+  // triangle has two quad sides, each side two triangles). Label them.
+  std::vector<int32_t> loop(2 * size_t(nq), -1);
+  int32_t num_loops = 0;
+  for (int32_t q = 0; q < nq; ++q)
+    for (int a = m.is_half(q) ? 3 : 1; a <= 3; a += 2)
+      if (loop[size_t(slot(q, a))] < 0) {
+        walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = num_loops; });
+        ++num_loops;
+      }
+
+  // Flipping a quad whose two triangles lie on different loops merges the loops, so
+  // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
+  // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
+  Graph graph;
+  graph.num_nodes = num_loops;
+  std::vector<int32_t> edge_quad;
+  for (int32_t q = 0; q < nq; ++q) {
+    if (m.is_half(q)) continue;
+    const int32_t a = loop[size_t(2 * q)], b = loop[size_t(2 * q + 1)];
+    if (a != b) {
+      graph.edges.push_back({a, b});
+      edge_quad.push_back(q);
+    }
+  }
+  std::vector<int32_t>().swap(loop);
+  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) result.diagonal[size_t(edge_quad[size_t(e)])] = 1;
+
+  std::vector<uint8_t> visited(2 * size_t(nq), 0);
+  result.triangles.reserve(2 * size_t(nq));
+  for (int32_t q = 0; q < nq; ++q) {
+    const uint8_t d = result.diagonal[size_t(q)];
+    for (int a = m.is_half(q) ? 3 : 1 - d; a <= 3; a += 2) {
+      if (visited[size_t(slot(q, a))]) continue;
+      walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) {
+        visited[size_t(slot(tq, ta))] = 1;
+        const auto& c = m.quads[size_t(tq)];
+        result.triangles.push_back({c[size_t((ta + 3) & 3)], c[size_t(ta)], c[size_t((ta + 1) & 3)]});
+      });
+      result.cycle_start.push_back(int32_t(result.triangles.size()));
+    }
+  }
+  return result;
+}
+
+std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {
+  const int32_t nq = m.num_quads();
+  if (int32_t(cycle.diagonal.size()) != nq) return "diagonal has " + std::to_string(cycle.diagonal.size()) + " entries for " + std::to_string(nq) + " quads";
+
+  // The triangles the diagonals make, keyed by their sorted corners, with their quad.
+  std::map<std::array<int32_t, 3>, std::array<int32_t, 2>> expected; // -> {quad, times seen}
+  auto key = [](std::array<int32_t, 3> t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  for (int32_t q = 0; q < nq; ++q) {
+    const auto& c = m.quads[size_t(q)];
+    if (m.is_half(q)) {
+      expected[key({c[2], c[3], c[0]})] = {q, 0};
+    } else if (cycle.diagonal[size_t(q)] == 0) {
+      expected[key({c[0], c[1], c[2]})] = {q, 0};
+      expected[key({c[2], c[3], c[0]})] = {q, 0};
+    } else {
+      expected[key({c[1], c[2], c[3]})] = {q, 0};
+      expected[key({c[3], c[0], c[1]})] = {q, 0};
+    }
+  }
+  if (expected.size() != cycle.triangles.size())
+    return "the cycles hold " + std::to_string(cycle.triangles.size()) + " triangles but the triangulation has " +
+           std::to_string(expected.size());
+
+  UnionFind components(nq);
+  for (int32_t q = 0; q < nq; ++q)
+    for (int32_t n : m.neighbors[size_t(q)])
+      if (n >= 0) components.unite(q, n >> 2);
+
+  std::map<int32_t, int32_t> cycle_of_component;
+  for (int32_t k = 0; k < cycle.num_cycles(); ++k) {
+    const int32_t first = cycle.cycle_start[size_t(k)], last = cycle.cycle_start[size_t(k) + 1];
+    if (last - first < 2) return "cycle " + std::to_string(k) + " has fewer than 2 triangles";
+    int32_t component = -1;
+    for (int32_t i = first; i < last; ++i) {
+      const auto t = cycle.triangles[size_t(i)];
+      auto it = expected.find(key(t));
+      if (it == expected.end()) return "triangle " + std::to_string(i) + " is not a triangle of the triangulation";
+      if (++it->second[1] > 1) return "triangle " + std::to_string(i) + " appears twice";
+      const int32_t c = components.find(it->second[0]);
+      if (component < 0) component = c;
+      if (c != component) return "cycle " + std::to_string(k) + " spans two components";
+      const auto u = cycle.triangles[size_t(i + 1 == last ? first : i + 1)];
+      int shared = 0;
+      for (int32_t a : t) shared += a == u[0] || a == u[1] || a == u[2];
+      if (shared < 2)
+        return "triangles " + std::to_string(i) + " and " + std::to_string(i + 1 == last ? first : i + 1) +
+               " of cycle " + std::to_string(k) + " share no edge";
+    }
+    if (!cycle_of_component.emplace(component, k).second)
+      return "cycles " + std::to_string(cycle_of_component[component]) + " and " + std::to_string(k) +
+             " lie in one connected component (a missed merge)";
+  }
+  return "";
+}
+
+} // namespace meander

@@ -1,0 +1,77 @@
+#include "meander/pipeline.h"
+
+#include "meander/connectivity.h"
+#include "meander/error.h"
+
+#include <chrono>
+#include <string>
+
+namespace meander {
+
+Quadrangulation parse_quadrangulation(std::string_view name) {
+  if (name == "dual-simplest") return Quadrangulation::dual_simplest;
+  if (name == "catmull-clark") return Quadrangulation::catmull_clark;
+  if (name == "none") return Quadrangulation::none;
+  throw UsageError("unknown quadrangulation '" + std::string(name) + "' (expected dual-simplest, catmull-clark or none)");
+}
+
+namespace {
+
+class Stopwatch {
+public:
+  explicit Stopwatch(StageTimes* times) : times_(times), start_(std::chrono::steady_clock::now()) {}
+  void lap(const char* stage) {
+    const auto now = std::chrono::steady_clock::now();
+    if (times_) times_->emplace_back(stage, std::chrono::duration<double>(now - start_).count());
+    start_ = now;
+  }
+
+private:
+  StageTimes* times_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+} // namespace
+
+CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times) {
+  Stopwatch watch(times);
+  CurveResult result;
+  {
+    const Connectivity connectivity = build_connectivity(mesh);
+    watch.lap("connectivity");
+    switch (job.quadrangulation) {
+    case Quadrangulation::dual_simplest: result.quads = dual_simplest(mesh, connectivity); break;
+    case Quadrangulation::catmull_clark: result.quads = catmull_clark_quads(mesh, connectivity); break;
+    case Quadrangulation::none: result.quads = quads_as_is(mesh, connectivity); break;
+    }
+    mesh = PolygonMesh();
+  }
+  if (job.quadrangulation != Quadrangulation::dual_simplest) {
+    if (const int32_t open = count_open_sides(result.quads); open > 0)
+      throw TopologyError("the mesh has boundary (" + std::to_string(open) +
+                          " open quad sides): --quad catmull-clark and --quad none need a closed mesh, because "
+                          "Taubin's cycle is only defined there; the default --quad dual-simplest handles "
+                          "boundaries");
+  }
+  watch.lap("quadrangulate");
+  result.cycle = hamiltonian_cycle(result.quads, job.cycle);
+  watch.lap("cycle");
+  const Polylines control = control_polygons(result.quads, result.cycle);
+  result.curves = smooth_curves(control, job.curve);
+  watch.lap("smooth");
+  return result;
+}
+
+PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle) {
+  PolygonMesh m;
+  m.positions = quads.positions;
+  m.face_vertices.reserve(cycle.triangles.size() * 3);
+  m.face_start.resize(cycle.triangles.size() + 1);
+  for (size_t t = 0; t < cycle.triangles.size(); ++t) {
+    m.face_vertices.insert(m.face_vertices.end(), cycle.triangles[t].begin(), cycle.triangles[t].end());
+    m.face_start[t + 1] = int32_t(3 * (t + 1));
+  }
+  return m;
+}
+
+} // namespace meander

@@ -1,0 +1,146 @@
+#include "meander/quadrangulate.h"
+
+#include "meander/error.h"
+
+#include <string>
+
+namespace meander {
+
+namespace {
+
+void require_manifold_edges(const Connectivity& c) {
+  for (int32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_degree(e) > 2)
+      throw TopologyError("edge (" + std::to_string(c.edge_vertices[size_t(e)][0]) + "," +
+                          std::to_string(c.edge_vertices[size_t(e)][1]) + ") is shared by " +
+                          std::to_string(c.edge_degree(e)) + " faces: mesh is not manifold");
+}
+
+Vec3 face_centroid(const PolygonMesh& mesh, int32_t f) {
+  double x = 0, y = 0, z = 0;
+  for (int32_t v : mesh.face(f)) {
+    const Vec3 p = mesh.positions[size_t(v)];
+    x += p.x;
+    y += p.y;
+    z += p.z;
+  }
+  const double n = mesh.face_size(f);
+  return {float(x / n), float(y / n), float(z / n)};
+}
+
+// Side adjacency of a quad mesh given as polygons (every face a quad), from its edges.
+QuadMesh quads_with_adjacency(PolygonMesh quad_faces) {
+  const Connectivity c = build_connectivity(quad_faces);
+  require_manifold_edges(c);
+  QuadMesh q;
+  q.positions = std::move(quad_faces.positions);
+  const int32_t n = quad_faces.num_faces();
+  q.quads.resize(size_t(n));
+  q.neighbors.assign(size_t(n), {-1, -1, -1, -1});
+  for (int32_t f = 0; f < n; ++f)
+    for (int k = 0; k < 4; ++k) q.quads[size_t(f)][size_t(k)] = quad_faces.face_vertices[size_t(4 * f + k)];
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    if (c.edge_degree(e) != 2) continue;
+    const int32_t a = c.halfedges(e)[0], b = c.halfedges(e)[1];
+    q.neighbors[size_t(a / 4)][size_t(a % 4)] = b;
+    q.neighbors[size_t(b / 4)][size_t(b % 4)] = a;
+  }
+  return q;
+}
+
+} // namespace
+
+QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
+  require_manifold_edges(c);
+  const int32_t nv = mesh.num_vertices();
+  const int32_t nf = mesh.num_faces();
+  const int32_t ne = c.num_edges();
+  QuadMesh q;
+  q.positions.reserve(size_t(nv) + size_t(nf));
+  q.positions.assign(mesh.positions.begin(), mesh.positions.end());
+  for (int32_t f = 0; f < nf; ++f) q.positions.push_back(face_centroid(mesh, f));
+
+  // Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
+  // F_a and its second halfedge b lies in face F_b. Each halfedge h of face F touches two
+  // black edges of its quad: (F, tail h) and (head h, F); tail_side/head_side say which
+  // quad sides those are. The second halfedge may run either way (non-orientable or
+  // misoriented input), which changes its sides.
+  q.quads.resize(size_t(ne));
+  q.neighbors.assign(size_t(ne), {-1, -1, -1, -1});
+  std::vector<uint8_t> tail_side(size_t(mesh.num_corners())), head_side(size_t(mesh.num_corners()));
+  for (int32_t e = 0; e < ne; ++e) {
+    const auto hs = c.halfedges(e);
+    const int32_t a = hs[0];
+    const int32_t x = mesh.face_vertices[size_t(a)];
+    const int32_t y = halfedge_target(mesh, c, a);
+    const int32_t fa = nv + c.halfedge_face[size_t(a)];
+    tail_side[size_t(a)] = 3;
+    head_side[size_t(a)] = 2;
+    if (hs.size() == 1) {
+      q.quads[size_t(e)] = {x, -1, y, fa};
+      continue;
+    }
+    const int32_t b = hs[1];
+    q.quads[size_t(e)] = {x, nv + c.halfedge_face[size_t(b)], y, fa};
+    const bool same_direction = mesh.face_vertices[size_t(b)] == x;
+    tail_side[size_t(b)] = same_direction ? 0 : 1;
+    head_side[size_t(b)] = same_direction ? 1 : 0;
+  }
+  // The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
+  // is shared by the quads of h and next(h).
+  for (int32_t f = 0; f < nf; ++f) {
+    const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
+    for (int32_t h = first; h < last; ++h) {
+      const int32_t g = h + 1 == last ? first : h + 1;
+      const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
+      q.neighbors[size_t(qh)][head_side[size_t(h)]] = 4 * qg + tail_side[size_t(g)];
+      q.neighbors[size_t(qg)][tail_side[size_t(g)]] = 4 * qh + head_side[size_t(h)];
+    }
+  }
+  return q;
+}
+
+QuadMesh catmull_clark_quads(const PolygonMesh& mesh, const Connectivity& c) {
+  require_manifold_edges(c);
+  const int32_t nv = mesh.num_vertices();
+  const int32_t ne = c.num_edges();
+  const int32_t nf = mesh.num_faces();
+  PolygonMesh out;
+  out.positions.reserve(size_t(nv) + size_t(ne) + size_t(nf));
+  out.positions.assign(mesh.positions.begin(), mesh.positions.end());
+  for (int32_t e = 0; e < ne; ++e) {
+    const auto [u, v] = c.edge_vertices[size_t(e)];
+    out.positions.push_back((mesh.positions[size_t(u)] + mesh.positions[size_t(v)]) * 0.5f);
+  }
+  for (int32_t f = 0; f < nf; ++f) out.positions.push_back(face_centroid(mesh, f));
+  out.face_vertices.reserve(size_t(mesh.num_corners()) * 4);
+  out.face_start.reserve(size_t(mesh.num_corners()) + 1);
+  for (int32_t f = 0; f < nf; ++f) {
+    const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
+    for (int32_t h = first; h < last; ++h) {
+      const int32_t prev = h == first ? last - 1 : h - 1;
+      out.add_face({mesh.face_vertices[size_t(h)], nv + c.halfedge_edge[size_t(h)], nv + ne + f,
+                    nv + c.halfedge_edge[size_t(prev)]});
+    }
+  }
+  return quads_with_adjacency(std::move(out));
+}
+
+QuadMesh quads_as_is(const PolygonMesh& mesh, const Connectivity& c) {
+  require_manifold_edges(c);
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) != 4)
+      throw TopologyError("face " + std::to_string(f) + " has " + std::to_string(mesh.face_size(f)) +
+                          " vertices: --quad none needs a mesh of quads only (use --quad dual-simplest or "
+                          "catmull-clark)");
+  return quads_with_adjacency(mesh);
+}
+
+int32_t count_open_sides(const QuadMesh& q) {
+  int32_t open = 0;
+  for (int32_t i = 0; i < q.num_quads(); ++i)
+    for (int k = q.is_half(i) ? 2 : 0; k < 4; ++k) open += q.neighbors[size_t(i)][size_t(k)] < 0;
+  return open;
+}
+
+} // namespace meander

@@ -1,0 +1,195 @@
+#include "meander/spanning_tree.h"
+
+#include "meander/error.h"
+#include "random.h"
+#include "union_find.h"
+
+#include <algorithm>
+#include <string>
+
+namespace meander {
+
+TreeStrategy parse_tree_strategy(std::string_view name) {
+  if (name == "random") return TreeStrategy::random;
+  if (name == "uniform") return TreeStrategy::uniform;
+  if (name == "bfs") return TreeStrategy::bfs;
+  if (name == "dfs") return TreeStrategy::dfs;
+  throw UsageError("unknown tree strategy '" + std::string(name) + "' (expected random, uniform, bfs or dfs)");
+}
+
+std::string_view to_string(TreeStrategy strategy) {
+  switch (strategy) {
+  case TreeStrategy::random: return "random";
+  case TreeStrategy::uniform: return "uniform";
+  case TreeStrategy::bfs: return "bfs";
+  case TreeStrategy::dfs: return "dfs";
+  }
+  return "?";
+}
+
+namespace {
+
+// Adjacency in CSR form: node u's incident (neighbour, edge id) pairs are
+// adjacency[start[u] .. start[u+1]).
+struct Adjacency {
+  std::vector<int32_t> start;
+  std::vector<std::array<int32_t, 2>> adjacent;
+};
+
+Adjacency build_adjacency(const Graph& g) {
+  Adjacency a;
+  a.start.assign(size_t(g.num_nodes) + 1, 0);
+  for (const auto& [u, v] : g.edges)
+    if (u != v) {
+      ++a.start[size_t(u) + 1];
+      ++a.start[size_t(v) + 1];
+    }
+  for (int32_t n = 0; n < g.num_nodes; ++n) a.start[size_t(n) + 1] += a.start[size_t(n)];
+  a.adjacent.resize(size_t(a.start.back()));
+  std::vector<int32_t> fill(a.start.begin(), a.start.end() - 1);
+  for (int32_t e = 0; e < int32_t(g.edges.size()); ++e) {
+    const auto [u, v] = g.edges[size_t(e)];
+    if (u == v) continue;
+    a.adjacent[size_t(fill[size_t(u)]++)] = {v, e};
+    a.adjacent[size_t(fill[size_t(v)]++)] = {u, e};
+  }
+  return a;
+}
+
+std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
+  std::vector<int32_t> order(g.edges.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = int32_t(i);
+  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(uint32_t(i))]);
+  UnionFind sets(g.num_nodes);
+  std::vector<int32_t> forest;
+  for (int32_t e : order)
+    if (sets.unite(g.edges[size_t(e)][0], g.edges[size_t(e)][1])) forest.push_back(e);
+  return forest;
+}
+
+// One root per component, chosen at random among its nodes, so the seed moves the
+// root. Returns the component of each node and the roots in component order.
+std::vector<int32_t> random_roots(const Graph& g, const Adjacency& a, Random& rng, std::vector<int32_t>& component) {
+  component.assign(size_t(g.num_nodes), -1);
+  std::vector<int32_t> roots, queue;
+  for (int32_t s = 0; s < g.num_nodes; ++s) {
+    if (component[size_t(s)] >= 0) continue;
+    const int32_t id = int32_t(roots.size());
+    queue.assign(1, s);
+    component[size_t(s)] = id;
+    for (size_t i = 0; i < queue.size(); ++i)
+      for (int32_t k = a.start[size_t(queue[i])]; k < a.start[size_t(queue[i]) + 1]; ++k) {
+        const int32_t n = a.adjacent[size_t(k)][0];
+        if (component[size_t(n)] < 0) {
+          component[size_t(n)] = id;
+          queue.push_back(n);
+        }
+      }
+    roots.push_back(queue[rng.below(uint32_t(queue.size()))]);
+  }
+  return roots;
+}
+
+std::vector<int32_t> breadth_first(const Graph& g, Random& rng) {
+  const Adjacency a = build_adjacency(g);
+  std::vector<int32_t> component;
+  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
+  std::vector<int32_t> forest, queue;
+  queue.reserve(size_t(g.num_nodes));
+  for (int32_t r : roots) {
+    seen[size_t(r)] = 1;
+    queue.push_back(r);
+  }
+  for (size_t i = 0; i < queue.size(); ++i)
+    for (int32_t k = a.start[size_t(queue[i])]; k < a.start[size_t(queue[i]) + 1]; ++k) {
+      const auto [n, e] = a.adjacent[size_t(k)];
+      if (!seen[size_t(n)]) {
+        seen[size_t(n)] = 1;
+        forest.push_back(e);
+        queue.push_back(n);
+      }
+    }
+  return forest;
+}
+
+std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
+  const Adjacency a = build_adjacency(g);
+  std::vector<int32_t> component;
+  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
+  // Each node scans its neighbours once, starting at a random offset, so the walk turns
+  // differently for each seed while the total work stays linear.
+  std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
+  std::vector<int32_t> forest, stack;
+  for (int32_t r : roots) {
+    seen[size_t(r)] = 1;
+    stack.assign(1, r);
+    offset[size_t(r)] = int32_t(rng.below(uint32_t(std::max(1, a.start[size_t(r) + 1] - a.start[size_t(r)]))));
+    while (!stack.empty()) {
+      const int32_t u = stack.back();
+      const int32_t degree = a.start[size_t(u) + 1] - a.start[size_t(u)];
+      if (scanned[size_t(u)] == degree) {
+        stack.pop_back();
+        continue;
+      }
+      const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % degree;
+      const auto [n, e] = a.adjacent[size_t(k)];
+      if (seen[size_t(n)]) continue;
+      seen[size_t(n)] = 1;
+      forest.push_back(e);
+      const int32_t nd = a.start[size_t(n) + 1] - a.start[size_t(n)];
+      offset[size_t(n)] = int32_t(rng.below(uint32_t(std::max(1, nd))));
+      stack.push_back(n);
+    }
+  }
+  return forest;
+}
+
+// Wilson's algorithm: loop-erased random walks from each node until they hit the tree.
+// The walk remembers only the last edge it left each node by, which erases loops.
+std::vector<int32_t> wilson(const Graph& g, Random& rng) {
+  const Adjacency a = build_adjacency(g);
+  std::vector<int32_t> component;
+  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  std::vector<uint8_t> in_tree(size_t(g.num_nodes), 0);
+  std::vector<int32_t> next_node(size_t(g.num_nodes), -1), next_edge(size_t(g.num_nodes), -1);
+  for (int32_t r : roots) in_tree[size_t(r)] = 1;
+  std::vector<int32_t> forest;
+  for (int32_t s = 0; s < g.num_nodes; ++s) {
+    for (int32_t u = s; !in_tree[size_t(u)];) {
+      const int32_t degree = a.start[size_t(u) + 1] - a.start[size_t(u)];
+      const auto [n, e] = a.adjacent[size_t(a.start[size_t(u)] + int32_t(rng.below(uint32_t(degree))))];
+      next_node[size_t(u)] = n;
+      next_edge[size_t(u)] = e;
+      u = n;
+    }
+    for (int32_t u = s; !in_tree[size_t(u)]; u = next_node[size_t(u)]) {
+      in_tree[size_t(u)] = 1;
+      forest.push_back(next_edge[size_t(u)]);
+    }
+  }
+  return forest;
+}
+
+} // namespace
+
+std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {
+  Random rng(seed);
+  std::vector<int32_t> forest;
+  switch (strategy) {
+  case TreeStrategy::random: forest = kruskal_random(graph, rng); break;
+  case TreeStrategy::uniform: forest = wilson(graph, rng); break;
+  case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
+  case TreeStrategy::dfs: forest = depth_first(graph, rng); break;
+  }
+  // Increasing order through a mark per edge: linear, unlike sorting.
+  std::vector<uint8_t> in_forest(graph.edges.size(), 0);
+  for (int32_t e : forest) in_forest[size_t(e)] = 1;
+  forest.clear();
+  for (size_t e = 0; e < in_forest.size(); ++e)
+    if (in_forest[e]) forest.push_back(int32_t(e));
+  return forest;
+}
+
+} // namespace meander

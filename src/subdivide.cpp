@@ -1,0 +1,85 @@
+#include "meander/subdivide.h"
+
+#include "meander/error.h"
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+namespace meander {
+
+namespace {
+
+// The vertex type OpenSubdiv's PrimvarRefiner interpolates; double so that deep levels
+// do not accumulate float rounding.
+struct Point {
+  double x = 0, y = 0, z = 0;
+  void Clear(void* = nullptr) { x = y = z = 0; }
+  void AddWithWeight(const Point& p, float w) {
+    x += w * p.x;
+    y += w * p.y;
+    z += w * p.z;
+  }
+};
+
+} // namespace
+
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) {
+  using namespace OpenSubdiv;
+  if (options.levels < 0) throw UsageError("subdivision levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+  if (double(mesh.num_corners()) * std::pow(4.0, options.levels) > 2147483647.0)
+    throw UsageError(std::to_string(options.levels) + " subdivision levels would make more than 2^31 corners");
+
+  std::vector<int> sizes(size_t(mesh.num_faces()));
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) sizes[size_t(f)] = mesh.face_size(f);
+  Far::TopologyDescriptor desc;
+  desc.numVertices = mesh.num_vertices();
+  desc.numFaces = mesh.num_faces();
+  desc.numVertsPerFace = sizes.data();
+  desc.vertIndicesPerFace = mesh.face_vertices.data();
+
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
+  if (!refiner) throw TopologyError("OpenSubdiv refused the mesh topology (is it manifold?)");
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(options.levels));
+
+  std::vector<Point> points(size_t(refiner->GetNumVerticesTotal()));
+  for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3 p = mesh.positions[size_t(v)];
+    points[size_t(v)] = {p.x, p.y, p.z};
+  }
+  Far::PrimvarRefiner primvar(*refiner);
+  Point* src = points.data();
+  for (int level = 1; level <= options.levels; ++level) {
+    Point* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+    primvar.Interpolate(level, src, dst);
+    src = dst;
+  }
+  const Far::TopologyLevel& finest = refiner->GetLevel(options.levels);
+  std::vector<Point> limit;
+  if (options.limit && options.levels > 0) {
+    limit.resize(size_t(finest.GetNumVertices()));
+    Point* dst = limit.data();
+    primvar.Limit(src, dst);
+    src = limit.data();
+  }
+
+  PolygonMesh out;
+  out.positions.resize(size_t(finest.GetNumVertices()));
+  for (size_t v = 0; v < out.positions.size(); ++v) out.positions[v] = {float(src[v].x), float(src[v].y), float(src[v].z)};
+  out.face_start.reserve(size_t(finest.GetNumFaces()) + 1);
+  out.face_vertices.reserve(size_t(finest.GetNumFaceVertices()));
+  for (int f = 0; f < finest.GetNumFaces(); ++f) {
+    const Far::ConstIndexArray corners = finest.GetFaceVertices(f);
+    for (int i = 0; i < corners.size(); ++i) out.face_vertices.push_back(corners[i]);
+    out.face_start.push_back(int32_t(out.face_vertices.size()));
+  }
+  return out;
+}
+
+} // namespace meander

@@ -1,0 +1,129 @@
+#include "meander/hamiltonian.h"
+
+#include "meander/connectivity.h"
+#include "meander/pipeline.h"
+#include "meander/shapes.h"
+
+#include "meander/error.h"
+
+#include <gtest/gtest.h>
+
+namespace meander {
+namespace {
+
+struct Case {
+  const char* name;
+  PolygonMesh (*make)();
+  int components;
+};
+
+PolygonMesh two_spheres() {
+  PolygonMesh a = sphere(200), b = sphere(50);
+  const int32_t offset = a.num_vertices();
+  for (Vec3 p : b.positions) a.positions.push_back(p + Vec3{3, 0, 0});
+  for (int32_t f = 0; f < b.num_faces(); ++f) {
+    std::vector<int32_t> face(b.face(f).begin(), b.face(f).end());
+    for (int32_t& v : face) v += offset;
+    a.add_face(face);
+  }
+  return a;
+}
+
+const Case cases[] = {
+    {"sphere", [] { return sphere(500); }, 1},
+    {"torus", [] { return torus(600); }, 1},
+    {"genus3", [] { return genus_surface(3, 2000); }, 1},
+    {"grid", [] { return grid(200); }, 1},
+    {"moebius", [] { return moebius(120); }, 1},
+    {"two_spheres", two_spheres, 2},
+};
+
+class CycleOnShape : public ::testing::TestWithParam<std::tuple<Case, TreeStrategy>> {};
+
+// Every tree strategy gives exactly one cycle per component through every triangle, on
+// closed surfaces of genus 0..3, a disk, a non-orientable band and two components.
+TEST_P(CycleOnShape, DualSimplestGivesOneCyclePerComponent) {
+  const auto& [shape, strategy] = GetParam();
+  const PolygonMesh mesh = shape.make();
+  const Connectivity c = build_connectivity(mesh);
+  const QuadMesh quads = dual_simplest(mesh, c);
+  const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = strategy, .seed = 7});
+  EXPECT_EQ(verify_cycle(quads, cycle), "");
+  EXPECT_EQ(cycle.num_cycles(), shape.components);
+  int32_t boundary = 0;
+  for (int32_t e = 0; e < c.num_edges(); ++e) boundary += c.edge_degree(e) == 1;
+  EXPECT_EQ(int64_t(cycle.triangles.size()), 2 * int64_t(c.num_edges()) - boundary);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
+                         ::testing::Combine(::testing::ValuesIn(cases),
+                                            ::testing::Values(TreeStrategy::random, TreeStrategy::uniform,
+                                                              TreeStrategy::bfs, TreeStrategy::dfs)),
+                         [](const auto& param_info) {
+                           return std::string(std::get<0>(param_info.param).name) + "_" +
+                                  std::string(to_string(std::get<1>(param_info.param)));
+                         });
+
+// Catmull-Clark quads and an all-quad input go through the general loop merging (the
+// initial loops are not faces there).
+TEST(Cycle, CatmullClarkQuadsOfATorus) {
+  const PolygonMesh mesh = torus(300);
+  const QuadMesh quads = catmull_clark_quads(mesh, build_connectivity(mesh));
+  const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = TreeStrategy::uniform, .seed = 3});
+  EXPECT_EQ(verify_cycle(quads, cycle), "");
+  EXPECT_EQ(cycle.num_cycles(), 1);
+  EXPECT_EQ(cycle.triangles.size(), 2 * quads.quads.size());
+}
+
+TEST(Cycle, QuadsAsIsOfASubdividedPretzel) {
+  // Catmull-Clark quads of a triangle mesh are an all-quad mesh: use them as input.
+  const PolygonMesh tri = genus_surface(2, 400);
+  const QuadMesh cc = catmull_clark_quads(tri, build_connectivity(tri));
+  PolygonMesh quad_mesh;
+  quad_mesh.positions = cc.positions;
+  for (const auto& q : cc.quads) quad_mesh.add_face({q[0], q[1], q[2], q[3]});
+  const QuadMesh quads = quads_as_is(quad_mesh, build_connectivity(quad_mesh));
+  const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = TreeStrategy::dfs, .seed = 11});
+  EXPECT_EQ(verify_cycle(quads, cycle), "");
+  EXPECT_EQ(cycle.num_cycles(), 1);
+}
+
+// A quad mesh with boundary cannot carry Taubin's cycle: refused, not looped forever.
+TEST(Cycle, QuadMeshWithBoundaryIsRefused) {
+  const PolygonMesh band = moebius(60);
+  const QuadMesh quads = quads_as_is(band, build_connectivity(band));
+  EXPECT_THROW(hamiltonian_cycle(quads), TopologyError);
+  EXPECT_THROW(make_curve(band, {.quadrangulation = Quadrangulation::none}), TopologyError);
+}
+
+// The verifier must catch what a counting-only check misses: two cycles in one component.
+TEST(Cycle, VerifierCatchesAMissedMerge) {
+  const PolygonMesh mesh = sphere(100);
+  const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+  TriangleCycle cycle = hamiltonian_cycle(quads);
+  ASSERT_EQ(verify_cycle(quads, cycle), "");
+  // Split the single cycle into two halves: still every triangle once, but two cycles.
+  const int32_t half = int32_t(cycle.triangles.size()) / 2;
+  cycle.cycle_start = {0, half, int32_t(cycle.triangles.size())};
+  EXPECT_NE(verify_cycle(quads, cycle), "");
+  // Drop the last triangle: a triangle is missing.
+  TriangleCycle missing = hamiltonian_cycle(quads);
+  missing.triangles.pop_back();
+  missing.cycle_start.back() -= 1;
+  EXPECT_NE(verify_cycle(quads, missing), "");
+}
+
+TEST(Cycle, SameSeedSameCycleOtherSeedOtherCycle) {
+  const PolygonMesh mesh = torus(800);
+  const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs}) {
+    const TriangleCycle a = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
+    const TriangleCycle b = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
+    const TriangleCycle c = hamiltonian_cycle(quads, {.tree = s, .seed = 6});
+    EXPECT_EQ(a.triangles, b.triangles) << to_string(s);
+    EXPECT_NE(a.diagonal, c.diagonal) << to_string(s);
+  }
+}
+
+} // namespace
+} // namespace meander
