@@ -1,0 +1,55 @@
+#include "meander/shapes.h"
+
+#include "meander/connectivity.h"
+#include "meander/error.h"
+
+#include <gtest/gtest.h>
+
+namespace meander {
+namespace {
+
+struct Topology {
+  int64_t chi;
+  int boundary_edges;
+};
+
+Topology topology(const PolygonMesh& m) {
+  const Connectivity c = build_connectivity(m);
+  int boundary = 0;
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    EXPECT_LE(c.edge_degree(e), 2);
+    boundary += c.edge_degree(e) == 1;
+  }
+  return {int64_t(m.num_vertices()) - c.num_edges() + m.num_faces(), boundary};
+}
+
+// The generated shapes have the topology their names promise (chi = 2 - 2g for closed
+// surfaces), and about the number of faces asked for.
+TEST(Shapes, TopologyAndSize) {
+  EXPECT_EQ(topology(sphere(1000)).chi, 2);
+  EXPECT_EQ(topology(torus(1000)).chi, 0);
+  for (int g = 0; g <= 3; ++g) {
+    const PolygonMesh m = genus_surface(g, 3000);
+    const Topology t = topology(m);
+    EXPECT_EQ(t.chi, 2 - 2 * g) << "genus " << g;
+    EXPECT_EQ(t.boundary_edges, 0);
+    EXPECT_GT(m.num_faces(), 3000 / 3);
+    EXPECT_LT(m.num_faces(), 3000 * 3);
+  }
+  EXPECT_EQ(topology(grid(800)).chi, 1);
+  EXPECT_GT(topology(grid(800)).boundary_edges, 0);
+  EXPECT_EQ(topology(moebius(200)).chi, 0);
+  for (int64_t n : {int64_t(100), int64_t(10000)}) {
+    EXPECT_NEAR(double(sphere(n).num_faces()), double(n), 0.2 * double(n));
+    EXPECT_NEAR(double(torus(n).num_faces()), double(n), 0.2 * double(n));
+  }
+}
+
+TEST(Shapes, RefusesUnknownNamesAndSizes) {
+  EXPECT_THROW(make_shape("klein", 100), UsageError);
+  EXPECT_THROW(make_shape("sphere", 0), UsageError);
+  EXPECT_THROW(genus_surface(-1, 100), UsageError);
+}
+
+} // namespace
+} // namespace meander

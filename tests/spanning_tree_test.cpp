@@ -1,0 +1,112 @@
+#include "meander/spanning_tree.h"
+
+#include "meander/error.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+namespace meander {
+namespace {
+
+// A grid graph of w x h nodes plus a separate triangle: two components.
+Graph grid_and_triangle(int w, int h) {
+  Graph g;
+  g.num_nodes = w * h + 3;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (x + 1 < w) g.edges.push_back({y * w + x, y * w + x + 1});
+      if (y + 1 < h) g.edges.push_back({y * w + x, (y + 1) * w + x});
+    }
+  const int t = w * h;
+  g.edges.push_back({t, t + 1});
+  g.edges.push_back({t + 1, t + 2});
+  g.edges.push_back({t + 2, t});
+  g.edges.push_back({t, t}); // a self loop must be ignored
+  g.edges.push_back({t, t + 1}); // and a repeated edge must not form a cycle
+  return g;
+}
+
+// Union-find free check: a forest has no cycle iff |edges| = |nodes| - |components| and it
+// connects every component.
+void expect_spanning_forest(const Graph& g, const std::vector<int32_t>& forest, int components) {
+  ASSERT_EQ(int(forest.size()), g.num_nodes - components);
+  std::vector<int32_t> label(size_t(g.num_nodes));
+  std::iota(label.begin(), label.end(), 0);
+  // Relabel until stable (quadratic but tiny graphs).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int32_t e : forest) {
+      auto [u, v] = g.edges[size_t(e)];
+      ASSERT_NE(u, v);
+      const int32_t m = std::min(label[size_t(u)], label[size_t(v)]);
+      if (label[size_t(u)] != m || label[size_t(v)] != m) changed = true;
+      label[size_t(u)] = label[size_t(v)] = m;
+    }
+  }
+  std::sort(label.begin(), label.end());
+  EXPECT_EQ(std::unique(label.begin(), label.end()) - label.begin(), components);
+  EXPECT_TRUE(std::is_sorted(forest.begin(), forest.end()));
+}
+
+TEST(SpanningTree, EveryStrategySpansEveryComponent) {
+  const Graph g = grid_and_triangle(12, 9);
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs})
+    for (uint64_t seed : {1, 2, 99}) {
+      SCOPED_TRACE(std::string(to_string(s)) + " seed " + std::to_string(seed));
+      expect_spanning_forest(g, spanning_forest(g, s, seed), 2);
+    }
+}
+
+// The styles differ measurably: a DFS tree is made of long snakes (a long longest path),
+// a BFS tree of short branches around its root (longest path at most twice the radius).
+TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
+  Graph g;
+  const int n = 40;
+  g.num_nodes = n * n;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if (x + 1 < n) g.edges.push_back({y * n + x, y * n + x + 1});
+      if (y + 1 < n) g.edges.push_back({y * n + x, (y + 1) * n + x});
+    }
+  // The longest path of a tree: the farthest node from the farthest node of any node.
+  auto longest_path = [&](TreeStrategy s) {
+    std::vector<std::vector<int32_t>> adj(size_t(g.num_nodes));
+    for (int32_t e : spanning_forest(g, s, 3)) {
+      adj[size_t(g.edges[size_t(e)][0])].push_back(g.edges[size_t(e)][1]);
+      adj[size_t(g.edges[size_t(e)][1])].push_back(g.edges[size_t(e)][0]);
+    }
+    auto farthest = [&](int32_t from, int& distance) {
+      std::vector<int> d(size_t(g.num_nodes), -1);
+      std::vector<int32_t> queue{from};
+      d[size_t(from)] = 0;
+      for (size_t i = 0; i < queue.size(); ++i)
+        for (int32_t m : adj[size_t(queue[i])])
+          if (d[size_t(m)] < 0) {
+            d[size_t(m)] = d[size_t(queue[i])] + 1;
+            queue.push_back(m);
+          }
+      distance = d[size_t(queue.back())];
+      return queue.back();
+    };
+    int distance = 0;
+    farthest(farthest(0, distance), distance);
+    return distance;
+  };
+  EXPECT_LE(longest_path(TreeStrategy::bfs), 4 * n);
+  EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
+}
+
+TEST(SpanningTree, ParsesNamesAndRefusesOthers) {
+  EXPECT_EQ(parse_tree_strategy("uniform"), TreeStrategy::uniform);
+  EXPECT_EQ(to_string(parse_tree_strategy("dfs")), "dfs");
+  try {
+    parse_tree_strategy("prim");
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "unknown tree strategy 'prim' (expected random, uniform, bfs or dfs)");
+  }
+}
+
+} // namespace
+} // namespace meander
