@@ -56,12 +56,20 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
   // triangle has two quad sides, each side two triangles). Label them.
   std::vector<int32_t> loop(2 * size_t(nq), -1);
   int32_t num_loops = 0;
-  for (int32_t q = 0; q < nq; ++q)
-    for (int a = m.is_half(q) ? 3 : 1; a <= 3; a += 2)
-      if (loop[size_t(slot(q, a))] < 0) {
-        walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = num_loops; });
-        ++num_loops;
-      }
+  if (m.face_point_offset >= 0) {
+    num_loops = int32_t(m.positions.size()) - m.face_point_offset;
+    for (int32_t q = 0; q < nq; ++q) {
+      loop[size_t(2 * q)] = m.quads[size_t(q)][1] - m.face_point_offset; // unused for half quads
+      loop[size_t(2 * q + 1)] = m.quads[size_t(q)][3] - m.face_point_offset;
+    }
+  } else {
+    for (int32_t q = 0; q < nq; ++q)
+      for (int a = m.is_half(q) ? 3 : 1; a <= 3; a += 2)
+        if (loop[size_t(slot(q, a))] < 0) {
+          walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = num_loops; });
+          ++num_loops;
+        }
+  }
 
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop

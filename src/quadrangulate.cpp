@@ -56,6 +56,7 @@ QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
   const int32_t nf = mesh.num_faces();
   const int32_t ne = c.num_edges();
   QuadMesh q;
+  q.face_point_offset = nv;
   q.positions.reserve(size_t(nv) + size_t(nf));
   q.positions.assign(mesh.positions.begin(), mesh.positions.end());
   for (int32_t f = 0; f < nf; ++f) q.positions.push_back(face_centroid(mesh, f));

@@ -64,6 +64,21 @@ INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
                                   std::string(to_string(std::get<1>(param_info.param)));
                          });
 
+// The face-loop shortcut of dual_simplest and the general loop labelling must both give
+// a valid single cycle (they number the loops differently, so the trees differ).
+TEST(Cycle, FaceLoopShortcutMatchesGeneralLabelling) {
+  for (const PolygonMesh& mesh : {genus_surface(2, 600), grid(300), moebius(100)}) {
+    QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+    const TriangleCycle fast = hamiltonian_cycle(quads, {.tree = TreeStrategy::uniform, .seed = 4});
+    quads.face_point_offset = -1;
+    const TriangleCycle general = hamiltonian_cycle(quads, {.tree = TreeStrategy::uniform, .seed = 4});
+    EXPECT_EQ(verify_cycle(quads, general), "");
+    EXPECT_EQ(general.num_cycles(), 1);
+    EXPECT_EQ(verify_cycle(quads, fast), "");
+    EXPECT_EQ(fast.num_cycles(), 1);
+  }
+}
+
 // Catmull-Clark quads and an all-quad input go through the general loop merging (the
 // initial loops are not faces there).
 TEST(Cycle, CatmullClarkQuadsOfATorus) {

@@ -23,6 +23,11 @@ struct QuadMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<int32_t, 4>> quads;
   std::vector<std::array<int32_t, 4>> neighbors;
+  // Set by dual_simplest: corners 1 and 3 are face points, vertex face_point_offset + f
+  // standing for face f. With every quad split along corners 0-2, the triangle with apex
+  // 1 or 3 then lies on the loop around that face, which spares the cycle a labelling
+  // walk over every triangle. -1 when the quads have no such structure.
+  int32_t face_point_offset = -1;
   int32_t num_quads() const { return int32_t(quads.size()); }
   bool is_half(int32_t q) const { return quads[size_t(q)][1] < 0; }
 };
