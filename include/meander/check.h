@@ -12,43 +12,63 @@
 
 namespace meander {
 
-// One edge-connected component of the mesh (faces joined across shared edges).
+// One edge-connected component of the mesh: faces joined across shared edges, non-manifold
+// edges included (a sheet glued to another along an edge is part of it), a lone shared
+// vertex not (two cubes touching at a corner are two components, as repair will leave them).
 struct ComponentReport {
   int32_t faces = 0;
-  int32_t vertices = 0;
+  int32_t vertices = 0;             // used by its faces; a vertex shared by components counts in each
   int32_t edges = 0;
   int32_t boundary_loops = 0;
   int64_t euler_characteristic = 0; // V - E + F of the component
-  bool manifold = true;             // no non-manifold edge or vertex in it
+  bool manifold = true;             // no non-manifold edge, and no non-manifold vertex on its faces
+  // Its faces can be oriented to agree across every manifold edge of it.
   bool orientable = true;
+  int32_t misoriented_edges = 0;    // as MeshReport::misoriented_edges, in this component
   // For a manifold component: orientable genus g from chi = 2 - 2g - b, or, if not
   // orientable, the number of cross-caps k from chi = 2 - k - b. -1 if non-manifold.
   int32_t genus = -1;
 };
 
 // Everything `meander info` prints. Counts are of the mesh as given (before repair).
+// Element counts (faces_by_size, degenerate, zero-area, out-of-range, unreferenced,
+// non-finite) look at every face and vertex. The topology (edges and everything after them
+// but zero_area_faces) is that of the faces as repair step 2 leaves them: faces with an
+// index out of range left out, repeated consecutive vertices collapsed, faces left with
+// fewer than 3 distinct vertices left out.
 struct MeshReport {
   int32_t vertices = 0;
   int32_t faces = 0;
   std::map<int32_t, int32_t> faces_by_size; // face size -> number of faces
   int32_t edges = 0;
   int32_t boundary_edges = 0;
+  // Closed chains of boundary edges. At a vertex the two boundary edges that end the same
+  // fan of faces are chained, so loops touching at a vertex stay apart; exact on manifold
+  // meshes (where a fan ends at a non-manifold edge a chain can stop short).
   int32_t boundary_loops = 0;
   int32_t non_manifold_edges = 0;    // shared by more than two faces
-  int32_t non_manifold_vertices = 0; // incident faces form more than one fan
-  int32_t degenerate_faces = 0;      // a vertex repeated, fewer than 3 distinct vertices
-  int32_t zero_area_faces = 0;       // distinct vertices but zero area (kept by repair)
-  int32_t duplicate_faces = 0;       // same vertex set as an earlier face (extra copies counted)
+  // Its faces form more than one fan (faces joined across the manifold edges through it);
+  // both ends of a non-manifold edge are such vertices.
+  int32_t non_manifold_vertices = 0;
+  int32_t degenerate_faces = 0;      // a vertex repeated, or fewer than 3 vertices
+  // Distinct vertices but a vector area below 1e-12 of the squared bounding-box diagonal:
+  // zero as far as float coordinates can tell (kept by repair).
+  int32_t zero_area_faces = 0;
+  // The same cycle of vertices as an earlier face, up to rotation and orientation
+  // (extra copies counted).
+  int32_t duplicate_faces = 0;
   int32_t unreferenced_vertices = 0;
-  int32_t non_finite_positions = 0;  // NaN or infinite coordinates
-  int32_t out_of_range_indices = 0;
-  int32_t misoriented_edges = 0;     // interior manifold edges crossed the same way by both faces
-  bool orientable = true;
-  Box3 bounding_box;                 // of the referenced vertices
-  std::vector<ComponentReport> components;
+  int32_t non_finite_positions = 0;  // vertices with a NaN or infinite coordinate
+  int32_t out_of_range_indices = 0;  // face indices < 0 or >= vertices
+  int32_t misoriented_edges = 0;     // manifold edges crossed the same way by both faces
+  bool orientable = true;            // every component is
+  Box3 bounding_box;                 // of the referenced vertices with finite positions
+  std::vector<ComponentReport> components; // numbered by their first face
 };
 
-// Inspects the mesh; never throws on a bad mesh (that is what it reports). O(n).
+// Inspects the mesh; never throws on a bad mesh (that is what it reports), whatever its
+// indices and positions hold, provided face_start is well formed (starts at 0, never
+// decreases, ends at face_vertices.size()), as PolygonMesh requires. O(n).
 MeshReport inspect(const PolygonMesh& mesh);
 
 struct RepairOptions {
@@ -58,7 +78,10 @@ struct RepairOptions {
 
 struct RepairResult {
   PolygonMesh mesh;
-  // One line per repair made, e.g. "split 1 non-manifold vertex (vertex 12 into 2 copies)".
+  // One line per repair made, with counts and an example, e.g. "split 6 non-manifold
+  // vertices into 13 copies (vertex 12 had 2 fans)"; also a line per notice that needs no
+  // repair ("component 0 is not orientable (Möbius-like); faces left as they are").
+  // Empty when the mesh was already fine, and then `mesh` is the input unchanged.
   std::vector<std::string> repairs;
 };
 
@@ -66,14 +89,34 @@ struct RepairResult {
 // every position finite, every face with >= 3 distinct vertices, every edge shared by at
 // most two faces, every vertex a single fan, faces consistently oriented where the
 // component is orientable, no duplicate faces, no unreferenced vertices. Repairs, in
-// order: collapse repeated consecutive indices and drop faces left with < 3 distinct
-// vertices; drop duplicate faces; cut non-manifold edges (each face keeps its own copy)
-// and split non-manifold vertices into one copy per fan; re-orient each orientable
-// component to its majority orientation; drop unreferenced vertices. Zero-area faces are
-// kept (dropping them would cut the surface). Out-of-range indices and non-finite
-// positions cannot be repaired: TopologyError (resp. InputError). With options.strict
-// any problem throws TopologyError. Messages start with `name` ("conrod.stl: edge
-// (17,42) is shared by 3 faces: mesh is not manifold"). O(n) time.
+// order:
+//  1. refuse an index out of range (TopologyError) or a non-finite position used by a
+//     face (InputError);
+//  2. collapse repeated consecutive indices (cyclically) and drop faces left with < 3
+//     vertices or still repeating one;
+//  3. drop duplicate faces (same cycle of vertices up to rotation and orientation), keeping
+//     the first;
+//  4. cut non-manifold edges and split non-manifold vertices: each fan of faces around a
+//     vertex (faces joined across its manifold edges) gets its own copy of the vertex, the
+//     first fan keeping the original index, copies appended. The faces on a non-manifold
+//     edge then no longer share it (except two whose ends lie in one fan at both vertices);
+//  5. flip the faces of each orientable component that disagree with the majority (on a
+//     tie the component's first face keeps its orientation); a non-orientable component
+//     is left as it is, with a notice;
+//  6. drop unreferenced vertices, keeping the order of the others.
+// Face order is kept. Zero-area faces are kept (dropping them would cut the surface).
+// With options.strict the first problem throws TopologyError instead of being repaired
+// (non-orientability is no problem: the cycle handles Möbius bands). Messages start with
+// `name` and use 0-based indices of the input: "conrod.stl: edge (17,42) is shared by 3
+// faces: mesh is not manifold", "x.obj: vertex 11 joins 2 separate fans of faces: mesh is
+// not manifold", "x.obj: faces 3 and 9 disagree in orientation across edge (4,5)",
+// "x.obj: face 3 repeats vertex 7", "x.obj: face 9 duplicates face 3", "x.obj: 1113
+// vertices are not used by any face (first: 35001)". No face left: TopologyError.
+// O(n) time: on a mesh that needs nothing, one connectivity build and a few passes.
 RepairResult repair(const PolygonMesh& mesh, std::string_view name, const RepairOptions& options = {});
+
+// The same, taking the mesh over: a mesh that needs nothing is moved, not copied, into the
+// result.
+RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options = {});
 
 } // namespace meander

@@ -1,0 +1,690 @@
+#include "meander/check.h"
+
+#include "meander/connectivity.h"
+#include "meander/error.h"
+#include "union_find.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <span>
+#include <utility>
+
+namespace meander {
+
+namespace {
+
+// Faces up to this size are searched for a repeated vertex pairwise: cheaper than a
+// per-vertex stamp array for the triangles and quads that make up nearly every mesh.
+constexpr size_t kPairwiseRepeatSearch = 8;
+
+// Relative to the squared bounding-box diagonal. Float coordinates resolve about 1e-7 of
+// the model's size, so a face whose area is below (1e-6 diagonal)^2 has no shape that
+// the file can express; exactly collinear vertices give ~1e-16 after rounding.
+constexpr double kZeroAreaRelative = 1e-12;
+
+std::string plural(int64_t n, std::string_view one, std::string_view many) {
+  return std::to_string(n) + " " + std::string(n == 1 ? one : many);
+}
+
+std::string edge_name(const std::array<int32_t, 2>& edge) {
+  char text[32];
+  std::snprintf(text, sizeof text, "(%d,%d)", edge[0], edge[1]);
+  return text;
+}
+
+std::string point_name(Vec3 p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+  return text;
+}
+
+bool in_range(int32_t v, int32_t num_vertices) { return uint32_t(v) < uint32_t(num_vertices); }
+
+bool all_in_range(std::span<const int32_t> face, int32_t num_vertices) {
+  return std::all_of(face.begin(), face.end(), [&](int32_t v) { return in_range(v, num_vertices); });
+}
+
+// Finds a vertex that occurs twice in a face, in time linear in the face size whatever
+// the size. The faces must index in range.
+class RepeatFinder {
+public:
+  explicit RepeatFinder(int32_t num_vertices) : num_vertices_(num_vertices) {}
+
+  // The vertex whose second occurrence comes first, or -1.
+  int32_t operator()(std::span<const int32_t> face) {
+    if (face.size() <= kPairwiseRepeatSearch) {
+      for (size_t j = 1; j < face.size(); ++j)
+        for (size_t i = 0; i < j; ++i)
+          if (face[i] == face[j]) return face[j];
+      return -1;
+    }
+    if (stamp_.empty()) stamp_.assign(size_t(num_vertices_), -1);
+    ++round_; // a fresh mark per face, so the array is never cleared
+    for (const int32_t v : face) {
+      if (stamp_[size_t(v)] == round_) return v;
+      stamp_[size_t(v)] = round_;
+    }
+    return -1;
+  }
+
+private:
+  int32_t num_vertices_;
+  int32_t round_ = -1;
+  std::vector<int32_t> stamp_;
+};
+
+// Why face `input_face` (`face` its vertices as given, `repeated` what RepeatFinder said)
+// is not a polygon.
+std::string degenerate_reason(int32_t input_face, std::span<const int32_t> face, int32_t repeated) {
+  return "face " + std::to_string(input_face) +
+         (repeated >= 0 ? " repeats vertex " + std::to_string(repeated)
+                        : " has only " + plural(int64_t(face.size()), "vertex", "vertices"));
+}
+
+// Rewrites the faces of `m` in place and in order: `rewrite(f, face, out)` writes the new
+// vertices of face f to `out`, which never lies after face.data() (writing can only stay
+// behind reading), and returns how many it wrote, or -1 to drop the face. `origin` maps
+// each face to a face of the input (empty: the identity) and follows the faces.
+template <typename Rewrite>
+void rewrite_faces(PolygonMesh& m, std::vector<int32_t>& origin, Rewrite&& rewrite) {
+  const int32_t nf = m.num_faces();
+  if (origin.empty()) {
+    origin.resize(size_t(nf));
+    std::iota(origin.begin(), origin.end(), 0);
+  }
+  int32_t begin = 0, written = 0, kept = 0;
+  for (int32_t f = 0; f < nf; ++f) {
+    const int32_t end = m.face_start[size_t(f) + 1];
+    const std::span<const int32_t> face(m.face_vertices.data() + begin, size_t(end - begin));
+    const int32_t n = rewrite(f, face, m.face_vertices.data() + written);
+    begin = end;
+    if (n < 0) continue;
+    written += n;
+    origin[size_t(kept)] = origin[size_t(f)];
+    m.face_start[size_t(++kept)] = written;
+  }
+  m.face_start.resize(size_t(kept) + 1);
+  m.face_vertices.resize(size_t(written));
+  origin.resize(size_t(kept));
+}
+
+// The rewrite that keeps a face as it is.
+int32_t keep_face(std::span<const int32_t> face, int32_t* out) {
+  if (out != face.data()) std::copy(face.begin(), face.end(), out); // out lies before face: a forward copy is safe
+  return int32_t(face.size());
+}
+
+struct FaceCleanup {
+  int32_t collapsed = 0; // kept once repeated consecutive vertices were collapsed
+  int32_t dropped = 0;   // fewer than 3 vertices, or a vertex repeated, after collapsing
+  std::string first_collapsed, first_dropped;
+};
+
+// Repair step 2. Faces with an index out of range are dropped silently: repair refused
+// them before, and inspect counts them apart but keeps them out of the topology.
+FaceCleanup clean_faces(PolygonMesh& m, std::vector<int32_t>& origin) {
+  const int32_t nv = m.num_vertices();
+  RepeatFinder repeats(nv);
+  FaceCleanup result;
+  rewrite_faces(m, origin, [&](int32_t f, std::span<const int32_t> face, int32_t* out) -> int32_t {
+    if (!all_in_range(face, nv)) return -1;
+    const int32_t repeated = repeats(face);
+    if (repeated < 0 && face.size() >= 3) return keep_face(face, out);
+    const int32_t input_face = origin[size_t(f)];
+    const std::string reason = degenerate_reason(input_face, face, repeated);
+    int32_t n = 0;
+    for (const int32_t v : face)
+      if (n == 0 || out[n - 1] != v) out[n++] = v;
+    while (n > 1 && out[n - 1] == out[0]) --n;
+    if (n >= 3 && repeats({out, size_t(n)}) < 0) {
+      if (result.collapsed++ == 0) result.first_collapsed = reason;
+      return n;
+    }
+    if (result.dropped++ == 0) result.first_dropped = reason;
+    return -1;
+  });
+  return result;
+}
+
+// The first face with fewer than 3 vertices or a repeated one, and the vertex it
+// repeats (-1 for none); {-1, -1} if every face is a polygon. Indices must be in range.
+std::pair<int32_t, int32_t> first_degenerate_face(const PolygonMesh& m) {
+  RepeatFinder repeats(m.num_vertices());
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const int32_t repeated = repeats(m.face(f));
+    if (repeated >= 0 || m.face_size(f) < 3) return {f, repeated};
+  }
+  return {-1, -1};
+}
+
+// The other halfedge of a manifold edge e crossed by h.
+int32_t partner(const Connectivity& c, int32_t e, int32_t h) {
+  const int32_t first = c.edge_halfedges[size_t(c.edge_start[size_t(e)])];
+  return first == h ? c.edge_halfedges[size_t(c.edge_start[size_t(e)]) + 1] : first;
+}
+
+// A manifold edge whose two faces both run from the same vertex to the other.
+bool misoriented(const PolygonMesh& m, const Connectivity& c, int32_t e) {
+  if (c.edge_degree(e) != 2) return false;
+  const int32_t i = c.edge_start[size_t(e)];
+  return m.face_vertices[size_t(c.edge_halfedges[size_t(i)])] ==
+         m.face_vertices[size_t(c.edge_halfedges[size_t(i) + 1])];
+}
+
+int32_t count_misoriented(const PolygonMesh& m, const Connectivity& c) {
+  int32_t count = 0;
+  for (int32_t e = 0; e < c.num_edges(); ++e) count += misoriented(m, c, e);
+  return count;
+}
+
+// Faces a and b (without repeated vertices) are the same cycle, up to rotation and
+// orientation.
+bool same_cycle(std::span<const int32_t> a, std::span<const int32_t> b) {
+  if (a.size() != b.size()) return false;
+  const size_t n = a.size();
+  const size_t k = size_t(std::find(b.begin(), b.end(), a[0]) - b.begin());
+  if (k == n) return false;
+  bool forward = true, backward = true;
+  for (size_t i = 1; i < n && (forward || backward); ++i) {
+    forward = forward && a[i] == b[(k + i) % n];
+    backward = backward && a[i] == b[(k + n - i) % n];
+  }
+  return forward || backward;
+}
+
+// Each face that repeats an earlier one, in increasing order, with the first face it
+// repeats. Such faces share every edge, so a face is only compared with the faces before
+// it on its least shared edge: one comparison per face on a manifold mesh.
+std::vector<std::pair<int32_t, int32_t>> find_duplicates(const PolygonMesh& m, const Connectivity& c) {
+  std::vector<std::pair<int32_t, int32_t>> duplicates;
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    int32_t edge = -1, degree = std::numeric_limits<int32_t>::max();
+    for (int32_t h = m.face_start[size_t(f)]; h < m.face_start[size_t(f) + 1] && degree > 2; ++h) {
+      const int32_t e = c.halfedge_edge[size_t(h)];
+      if (c.edge_degree(e) < degree) {
+        edge = e;
+        degree = c.edge_degree(e);
+      }
+    }
+    if (degree < 2) continue;
+    // Halfedges are listed in increasing order, so their faces are too.
+    for (const int32_t h : c.halfedges(edge)) {
+      const int32_t g = c.halfedge_face[size_t(h)];
+      if (g >= f) break;
+      if (same_cycle(m.face(f), m.face(g))) {
+        duplicates.emplace_back(f, g);
+        break;
+      }
+    }
+  }
+  return duplicates;
+}
+
+// Corners (= halfedges: corner h is where halfedge h starts) joined when they are the
+// corners at the same vertex of the two faces of a manifold edge. Each set is then a fan.
+UnionFind join_fans(const PolygonMesh& m, const Connectivity& c) {
+  UnionFind corners(m.num_corners());
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    if (c.edge_degree(e) != 2) continue;
+    const int32_t h1 = c.edge_halfedges[size_t(c.edge_start[size_t(e)])];
+    const int32_t h2 = c.edge_halfedges[size_t(c.edge_start[size_t(e)]) + 1];
+    const int32_t n1 = next_halfedge(m, c, h1), n2 = next_halfedge(m, c, h2);
+    if (m.face_vertices[size_t(h1)] == m.face_vertices[size_t(h2)]) { // both leave the same vertex
+      corners.unite(h1, h2);
+      corners.unite(n1, n2);
+    } else {
+      corners.unite(h1, n2);
+      corners.unite(n1, h2);
+    }
+  }
+  return corners;
+}
+
+// Number of fans at each vertex.
+std::vector<int32_t> count_fans(const PolygonMesh& m, UnionFind& corners) {
+  std::vector<int32_t> fans(size_t(m.num_vertices()), 0);
+  for (int32_t h = 0; h < m.num_corners(); ++h)
+    if (corners.find(h) == h) ++fans[size_t(m.face_vertices[size_t(h)])];
+  return fans;
+}
+
+// Gives every fan of a vertex but the first (the one holding its first corner) a copy of
+// the vertex, appended in the order the fans are met.
+void split_fans(PolygonMesh& m, UnionFind& corners, const std::vector<int32_t>& fans) {
+  std::vector<int32_t> first_fan(size_t(m.num_vertices()), -1), copy(size_t(m.num_corners()), -1);
+  for (int32_t h = 0; h < m.num_corners(); ++h) {
+    const int32_t v = m.face_vertices[size_t(h)];
+    if (fans[size_t(v)] < 2) continue;
+    const int32_t fan = corners.find(h);
+    if (first_fan[size_t(v)] < 0) first_fan[size_t(v)] = fan;
+    if (fan == first_fan[size_t(v)]) continue;
+    if (copy[size_t(fan)] < 0) {
+      copy[size_t(fan)] = m.num_vertices();
+      const Vec3 p = m.positions[size_t(v)];
+      m.positions.push_back(p);
+    }
+    m.face_vertices[size_t(h)] = copy[size_t(fan)];
+  }
+}
+
+// Faces joined across manifold edges, each set ("sheet") oriented relative to its first
+// face by a breadth-first search.
+struct Sheets {
+  std::vector<int32_t> sheet;        // per face
+  std::vector<uint8_t> flipped;      // per face: wound against the sheet's first face
+  std::vector<int32_t> order;        // faces grouped by sheet, each sheet from its first face
+  std::vector<int32_t> start{0};     // sheet s is order[start[s] .. start[s+1])
+  std::vector<uint8_t> orientable;   // per sheet
+  int32_t size() const { return int32_t(orientable.size()); }
+};
+
+Sheets find_sheets(const PolygonMesh& m, const Connectivity& c) {
+  const int32_t nf = m.num_faces();
+  Sheets s;
+  s.sheet.assign(size_t(nf), -1);
+  s.flipped.assign(size_t(nf), 0);
+  s.order.resize(size_t(nf));
+  int32_t tail = 0;
+  for (int32_t first = 0; first < nf; ++first) {
+    if (s.sheet[size_t(first)] >= 0) continue;
+    const int32_t id = s.size();
+    uint8_t orientable = 1;
+    s.sheet[size_t(first)] = id;
+    s.order[size_t(tail++)] = first;
+    for (int32_t head = s.start.back(); head < tail; ++head) {
+      const int32_t f = s.order[size_t(head)];
+      for (int32_t h = m.face_start[size_t(f)]; h < m.face_start[size_t(f) + 1]; ++h) {
+        const int32_t e = c.halfedge_edge[size_t(h)];
+        if (c.edge_degree(e) != 2) continue;
+        const int32_t other = partner(c, e, h);
+        const int32_t g = c.halfedge_face[size_t(other)];
+        const uint8_t want = s.flipped[size_t(f)] ^ uint8_t(m.face_vertices[size_t(h)] == m.face_vertices[size_t(other)]);
+        if (s.sheet[size_t(g)] < 0) {
+          s.sheet[size_t(g)] = id;
+          s.flipped[size_t(g)] = want;
+          s.order[size_t(tail++)] = g;
+        } else if (s.flipped[size_t(g)] != want) {
+          orientable = 0;
+        }
+      }
+    }
+    s.start.push_back(tail);
+    s.orientable.push_back(orientable);
+  }
+  return s;
+}
+
+// Reverses face f, keeping its first vertex first.
+void reverse_face(PolygonMesh& m, int32_t f) {
+  std::reverse(m.face_vertices.begin() + m.face_start[size_t(f)] + 1, m.face_vertices.begin() + m.face_start[size_t(f) + 1]);
+}
+
+std::vector<uint8_t> referenced(const PolygonMesh& m) {
+  std::vector<uint8_t> used(size_t(m.num_vertices()), 0);
+  for (const int32_t v : m.face_vertices) used[size_t(v)] = 1;
+  return used;
+}
+
+// Repair step 1: every index in range and every used position finite, or a refusal.
+// Returns which vertices are used.
+std::vector<uint8_t> check_indices_and_positions(const PolygonMesh& m, const std::string& prefix) {
+  const int32_t nv = m.num_vertices();
+  for (int32_t h = 0; h < m.num_corners(); ++h) {
+    const int32_t v = m.face_vertices[size_t(h)];
+    if (in_range(v, nv)) continue;
+    const auto f = std::upper_bound(m.face_start.begin(), m.face_start.end(), h) - m.face_start.begin() - 1;
+    throw TopologyError(prefix + "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                        " but the mesh has " + plural(nv, "vertex", "vertices"));
+  }
+  std::vector<uint8_t> used = referenced(m);
+  for (int32_t v = 0; v < nv; ++v)
+    if (used[size_t(v)] && !is_finite(m.positions[size_t(v)]))
+      throw InputError(prefix + "vertex " + std::to_string(v) + " has a non-finite position " +
+                       point_name(m.positions[size_t(v)]));
+  return used;
+}
+
+// Twice the vector area of a face, in double.
+double doubled_area(const PolygonMesh& m, std::span<const int32_t> face) {
+  const Vec3 p0 = m.positions[size_t(face[0])];
+  double x = 0, y = 0, z = 0;
+  for (size_t i = 1; i + 1 < face.size(); ++i) {
+    const Vec3 a = m.positions[size_t(face[i])], b = m.positions[size_t(face[i + 1])];
+    const double ax = double(a.x) - p0.x, ay = double(a.y) - p0.y, az = double(a.z) - p0.z;
+    const double bx = double(b.x) - p0.x, by = double(b.y) - p0.y, bz = double(b.z) - p0.z;
+    x += ay * bz - az * by;
+    y += az * bx - ax * bz;
+    z += ax * by - ay * bx;
+  }
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+// Makes each boundary loop one set of `corners` (the fans of join_fans): a boundary edge
+// joins the fans at its two ends, and a fan the two boundary edges that end it. Where a
+// fan ends at a non-manifold edge instead, the boundary has no single way on: the fans
+// at that vertex left with one boundary end are joined, as one walk along the boundary
+// would pass from one to the next.
+void join_boundary_loops(const PolygonMesh& m, const Connectivity& c, UnionFind& corners, bool non_manifold_edges) {
+  if (non_manifold_edges) {
+    std::vector<uint8_t> ends(size_t(m.num_corners()), 0); // boundary edges ending each fan (2 is plenty)
+    const auto for_each_boundary_corner = [&](auto&& visit) {
+      for (int32_t e = 0; e < c.num_edges(); ++e)
+        if (c.edge_degree(e) == 1) {
+          const int32_t h = c.halfedges(e)[0];
+          visit(h);
+          visit(next_halfedge(m, c, h));
+        }
+    };
+    for_each_boundary_corner([&](int32_t h) {
+      uint8_t& n = ends[size_t(corners.find(h))];
+      n = uint8_t(std::min(n + 1, 2));
+    });
+    std::vector<int32_t> open_fan(size_t(m.num_vertices()), -1); // a fan at the vertex with one boundary end
+    for_each_boundary_corner([&](int32_t h) {
+      if (ends[size_t(corners.find(h))] != 1) return;
+      int32_t& first = open_fan[size_t(m.face_vertices[size_t(h)])];
+      if (first < 0) first = h;
+      else corners.unite(first, h);
+    });
+  }
+  for (int32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_degree(e) == 1) {
+      const int32_t h = c.halfedges(e)[0];
+      corners.unite(h, next_halfedge(m, c, h));
+    }
+}
+
+// The topology part of inspect() on faces that are all polygons with indices in range.
+void inspect_topology(const PolygonMesh& m, MeshReport& report) {
+  const Connectivity c = build_connectivity(m);
+  report.edges = c.num_edges();
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    report.boundary_edges += c.edge_degree(e) == 1;
+    report.non_manifold_edges += c.edge_degree(e) > 2;
+    report.misoriented_edges += misoriented(m, c, e);
+  }
+  report.duplicate_faces = int32_t(find_duplicates(m, c).size());
+
+  // Components: sheets joined across non-manifold edges, numbered by their first face
+  // (sheets are numbered that way already).
+  const Sheets sheets = find_sheets(m, c);
+  const auto sheet_of_halfedge = [&](int32_t h) { return sheets.sheet[size_t(c.halfedge_face[size_t(h)])]; };
+  UnionFind glued(sheets.size());
+  for (int32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_degree(e) > 2)
+      for (const int32_t h : c.halfedges(e)) glued.unite(sheet_of_halfedge(c.halfedges(e)[0]), sheet_of_halfedge(h));
+  std::vector<int32_t> component_of_sheet(size_t(sheets.size())), number(size_t(sheets.size()), -1);
+  for (int32_t s = 0; s < sheets.size(); ++s) {
+    int32_t& n = number[size_t(glued.find(s))];
+    if (n < 0) {
+      n = int32_t(report.components.size());
+      report.components.emplace_back();
+    }
+    component_of_sheet[size_t(s)] = n;
+  }
+  std::vector<ComponentReport>& components = report.components;
+  const auto component = [&](int32_t f) -> ComponentReport& {
+    return components[size_t(component_of_sheet[size_t(sheets.sheet[size_t(f)])])];
+  };
+  for (int32_t s = 0; s < sheets.size(); ++s)
+    if (!sheets.orientable[size_t(s)]) components[size_t(component_of_sheet[size_t(s)])].orientable = false;
+  for (int32_t f = 0; f < m.num_faces(); ++f) ++component(f).faces;
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    ComponentReport& k = component(c.halfedge_face[size_t(c.halfedges(e)[0])]);
+    ++k.edges;
+    k.misoriented_edges += misoriented(m, c, e);
+    if (c.edge_degree(e) > 2) k.manifold = false;
+  }
+
+  // A vertex counts once per component: a manifold vertex is one fan, so in one
+  // component; the few fans of non-manifold vertices are sorted out apart.
+  UnionFind corners = join_fans(m, c);
+  const std::vector<int32_t> fans = count_fans(m, corners);
+  std::vector<std::pair<int32_t, int32_t>> shared; // (vertex, component) of each fan of a non-manifold vertex
+  for (int32_t h = 0; h < m.num_corners(); ++h) {
+    if (corners.find(h) != h) continue;
+    const int32_t v = m.face_vertices[size_t(h)];
+    ComponentReport& k = component(c.halfedge_face[size_t(h)]);
+    if (fans[size_t(v)] == 1) {
+      ++k.vertices;
+    } else {
+      k.manifold = false;
+      shared.emplace_back(v, int32_t(&k - components.data()));
+    }
+  }
+  std::sort(shared.begin(), shared.end());
+  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+  for (const auto& [v, k] : shared) ++components[size_t(k)].vertices;
+  for (const int32_t n : fans) report.non_manifold_vertices += n > 1;
+
+  join_boundary_loops(m, c, corners, report.non_manifold_edges > 0);
+  std::vector<bool> counted(size_t(m.num_corners()), false);
+  for (int32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_degree(e) == 1) {
+      const int32_t h = c.halfedges(e)[0];
+      const int32_t loop = corners.find(h);
+      if (counted[size_t(loop)]) continue;
+      counted[size_t(loop)] = true;
+      ++report.boundary_loops;
+      ++component(c.halfedge_face[size_t(h)]).boundary_loops;
+    }
+
+  for (ComponentReport& k : components) {
+    k.euler_characteristic = int64_t(k.vertices) - k.edges + k.faces;
+    const int64_t deficit = 2 - k.euler_characteristic - k.boundary_loops;
+    if (k.manifold) k.genus = int32_t(k.orientable ? deficit / 2 : deficit);
+    report.orientable = report.orientable && k.orientable;
+  }
+}
+
+} // namespace
+
+MeshReport inspect(const PolygonMesh& mesh) {
+  const int32_t nv = mesh.num_vertices(), nf = mesh.num_faces();
+  MeshReport report;
+  report.vertices = nv;
+  report.faces = nf;
+
+  std::vector<uint8_t> used(size_t(nv), 0);
+  std::vector<int32_t> by_size;
+  RepeatFinder repeats(nv);
+  bool all_polygons = true; // every face goes into the topology as it is
+  for (int32_t f = 0; f < nf; ++f) {
+    const std::span<const int32_t> face = mesh.face(f);
+    if (face.size() >= by_size.size()) by_size.resize(face.size() + 1, 0);
+    ++by_size[face.size()];
+    const auto bad = std::count_if(face.begin(), face.end(), [&](int32_t v) { return !in_range(v, nv); });
+    if (bad > 0) {
+      report.out_of_range_indices += int32_t(bad);
+      all_polygons = false;
+      continue;
+    }
+    for (const int32_t v : face) used[size_t(v)] = 1;
+    if (face.size() < 3 || repeats(face) >= 0) {
+      ++report.degenerate_faces;
+      all_polygons = false;
+    }
+  }
+  for (size_t n = 0; n < by_size.size(); ++n)
+    if (by_size[n] > 0) report.faces_by_size[int32_t(n)] = by_size[n];
+  for (int32_t v = 0; v < nv; ++v) {
+    const Vec3 p = mesh.positions[size_t(v)];
+    const bool finite = is_finite(p);
+    report.non_finite_positions += !finite;
+    report.unreferenced_vertices += !used[size_t(v)];
+    if (used[size_t(v)] && finite) report.bounding_box.extend(p);
+  }
+
+  const double diagonal = report.bounding_box.diagonal();
+  const double zero_area = 2 * kZeroAreaRelative * diagonal * diagonal;
+  for (int32_t f = 0; f < nf; ++f) {
+    const std::span<const int32_t> face = mesh.face(f);
+    if (face.size() < 3 || !all_in_range(face, nv) || repeats(face) >= 0) continue;
+    if (!std::all_of(face.begin(), face.end(), [&](int32_t v) { return is_finite(mesh.positions[size_t(v)]); })) continue;
+    report.zero_area_faces += doubled_area(mesh, face) < zero_area;
+  }
+
+  if (all_polygons) {
+    inspect_topology(mesh, report);
+  } else {
+    PolygonMesh polygons = mesh;
+    std::vector<int32_t> origin;
+    clean_faces(polygons, origin);
+    inspect_topology(polygons, report);
+  }
+  return report;
+}
+
+RepairResult repair(const PolygonMesh& mesh, std::string_view name, const RepairOptions& options) {
+  return repair(PolygonMesh(mesh), name, options);
+}
+
+RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
+  const std::string prefix = std::string(name) + ": ";
+  const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
+  RepairResult result{std::move(mesh), {}};
+  PolygonMesh& m = result.mesh;
+  std::vector<std::string>& repairs = result.repairs;
+
+  // 1. What cannot be repaired.
+  std::vector<uint8_t> used = check_indices_and_positions(m, prefix);
+  const int32_t input_faces = m.num_faces();
+  std::vector<int32_t> origin; // the input face of each face of m; empty while they are the same
+  const auto input_face = [&](int32_t f) { return origin.empty() ? f : origin[size_t(f)]; };
+
+  // 2. Repeated vertices.
+  if (const auto [f, repeated] = first_degenerate_face(m); f >= 0) {
+    if (options.strict) refuse(degenerate_reason(f, m.face(f), repeated));
+    const FaceCleanup fix = clean_faces(m, origin);
+    if (fix.collapsed > 0)
+      repairs.push_back("collapsed repeated consecutive vertices in " + plural(fix.collapsed, "face", "faces") + " (" +
+                        fix.first_collapsed + ")");
+    if (fix.dropped > 0)
+      repairs.push_back("dropped " + plural(fix.dropped, "degenerate face", "degenerate faces") + " (" +
+                        fix.first_dropped + ")");
+    used = referenced(m);
+  }
+
+  // 3. Duplicate faces.
+  Connectivity c = build_connectivity(m);
+  if (const auto duplicates = find_duplicates(m, c); !duplicates.empty()) {
+    const std::string example = "face " + std::to_string(input_face(duplicates[0].first)) + " duplicates face " +
+                                std::to_string(input_face(duplicates[0].second));
+    if (options.strict) refuse(example);
+    size_t next = 0;
+    rewrite_faces(m, origin, [&](int32_t f, std::span<const int32_t> face, int32_t* out) -> int32_t {
+      if (next < duplicates.size() && duplicates[next].first == f) return ++next, -1;
+      return keep_face(face, out);
+    });
+    repairs.push_back("dropped " + plural(int64_t(duplicates.size()), "duplicate face", "duplicate faces") + " (" +
+                      example + ")");
+    used = referenced(m);
+    c = build_connectivity(m);
+  }
+  if (m.num_faces() == 0)
+    throw TopologyError(prefix + "no faces left after repair (" +
+                        (input_faces == 0 ? std::string("the mesh has no faces")
+                                          : "all " + plural(input_faces, "face was", "faces were") +
+                                                " degenerate or duplicates") +
+                        ")");
+
+  // 4. Non-manifold edges and vertices. Splitting each vertex into its fans also cuts the
+  // edges, since the faces of a fan never cross a non-manifold edge.
+  {
+    int32_t cut = 0, first_cut = -1;
+    for (int32_t e = 0; e < c.num_edges(); ++e)
+      if (c.edge_degree(e) > 2 && cut++ == 0) first_cut = e;
+    if (cut > 0 && options.strict)
+      refuse("edge " + edge_name(c.edge_vertices[size_t(first_cut)]) + " is shared by " +
+             std::to_string(c.edge_degree(first_cut)) + " faces: mesh is not manifold");
+    UnionFind corners = join_fans(m, c);
+    const std::vector<int32_t> fans = count_fans(m, corners);
+    int32_t split = 0, copies = 0, first_split = -1;
+    for (int32_t v = 0; v < m.num_vertices(); ++v)
+      if (fans[size_t(v)] > 1) {
+        if (split++ == 0) first_split = v;
+        copies += fans[size_t(v)];
+      }
+    if (split > 0) {
+      const int32_t first_fans = fans[size_t(first_split)];
+      if (options.strict)
+        refuse("vertex " + std::to_string(first_split) + " joins " + std::to_string(first_fans) +
+               " separate fans of faces: mesh is not manifold");
+      if (cut > 0) // a non-manifold edge always ends at a split vertex: at least two fans end on it
+        repairs.push_back("cut " + plural(cut, "non-manifold edge", "non-manifold edges") + " (edge " +
+                          edge_name(c.edge_vertices[size_t(first_cut)]) + " was shared by " +
+                          std::to_string(c.edge_degree(first_cut)) + " faces)");
+      split_fans(m, corners, fans);
+      repairs.push_back("split " + plural(split, "non-manifold vertex", "non-manifold vertices") + " into " +
+                        std::to_string(copies) + " copies (vertex " + std::to_string(first_split) + " had " +
+                        std::to_string(first_fans) + " fans)");
+      used.resize(size_t(m.num_vertices()), 1);
+      c = build_connectivity(m);
+    }
+  }
+
+  // 5. Orientation. A consistently oriented mesh (the usual case) has no misoriented edge
+  // and needs no search.
+  if (count_misoriented(m, c) > 0) {
+    const Sheets sheets = find_sheets(m, c);
+    if (options.strict)
+      for (int32_t e = 0; e < c.num_edges(); ++e) {
+        const int32_t f = c.halfedge_face[size_t(c.halfedges(e)[0])];
+        if (misoriented(m, c, e) && sheets.orientable[size_t(sheets.sheet[size_t(f)])])
+          refuse("faces " + std::to_string(input_face(f)) + " and " +
+                 std::to_string(input_face(c.halfedge_face[size_t(c.halfedges(e)[1])])) +
+                 " disagree in orientation across edge " + edge_name(c.edge_vertices[size_t(e)]));
+      }
+    int32_t flipped = 0, first_flipped = std::numeric_limits<int32_t>::max(), non_orientable = 0, first_non_orientable = -1;
+    for (int32_t s = 0; s < sheets.size(); ++s) {
+      const std::span<const int32_t> faces(sheets.order.data() + sheets.start[size_t(s)],
+                                           size_t(sheets.start[size_t(s) + 1] - sheets.start[size_t(s)]));
+      if (!sheets.orientable[size_t(s)]) {
+        if (non_orientable++ == 0) first_non_orientable = s;
+        continue;
+      }
+      const auto against = std::count_if(faces.begin(), faces.end(), [&](int32_t f) { return sheets.flipped[size_t(f)]; });
+      const uint8_t wrong = 2 * size_t(against) > faces.size() ? 0 : 1; // the minority; a tie keeps the first face
+      for (const int32_t f : faces)
+        if (sheets.flipped[size_t(f)] == wrong) {
+          reverse_face(m, f);
+          ++flipped;
+          first_flipped = std::min(first_flipped, f);
+        }
+    }
+    if (flipped > 0)
+      repairs.push_back("re-oriented " + plural(flipped, "face", "faces") +
+                        " to agree with their neighbours (first: face " + std::to_string(input_face(first_flipped)) + ")");
+    if (non_orientable == 1)
+      repairs.push_back("component " + std::to_string(first_non_orientable) +
+                        " is not orientable (Möbius-like); faces left as they are");
+    else if (non_orientable > 1)
+      repairs.push_back(std::to_string(non_orientable) + " components are not orientable (Möbius-like; first: component " +
+                        std::to_string(first_non_orientable) + "); faces left as they are");
+  }
+
+  // 6. Unreferenced vertices.
+  if (const auto unused = std::count(used.begin(), used.end(), 0); unused > 0) {
+    const auto first = std::find(used.begin(), used.end(), 0) - used.begin();
+    if (options.strict)
+      refuse(unused == 1 ? "vertex " + std::to_string(first) + " is not used by any face"
+                         : std::to_string(unused) + " vertices are not used by any face (first: " + std::to_string(first) + ")");
+    std::vector<int32_t> index(used.size(), -1);
+    int32_t kept = 0;
+    for (size_t v = 0; v < used.size(); ++v)
+      if (used[v]) {
+        m.positions[size_t(kept)] = m.positions[v];
+        index[v] = kept++;
+      }
+    m.positions.resize(size_t(kept));
+    for (int32_t& v : m.face_vertices) v = index[size_t(v)];
+    repairs.push_back("dropped " + plural(unused, "unreferenced vertex", "unreferenced vertices") + " (first: vertex " +
+                      std::to_string(first) + ")");
+  }
+  return result;
+}
+
+} // namespace meander
