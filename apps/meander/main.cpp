@@ -1,2 +1,41 @@
+// meander: Hamiltonian cycle art from the command line.
+// Exit codes: 0 success, 1 input refused or processing failed, 2 usage error.
+#include "commands.h"
+
+#include "meander/error.h"
+
 #include <cstdio>
-int main() { std::puts("meander: not yet"); return 0; }
+#include <new>
+#include <vector>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Meander turns any polygon mesh into one closed curve that meanders over its whole surface."};
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  using namespace meander::cli;
+  const std::vector<Command> commands = {add_curve_command(app), add_info_command(app), add_generate_command(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  try {
+    for (const Command& c : commands)
+      if (c.app->parsed()) c.run();
+    return 0;
+  } catch (const meander::UsageError& e) {
+    std::fprintf(stderr, "meander: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "meander: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "meander: %s\n", e.what());
+    return 1;
+  }
+}

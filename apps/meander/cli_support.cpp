@@ -1,0 +1,50 @@
+#include "cli_support.h"
+
+#include "meander/check.h"
+#include "meander/error.h"
+#include "meander/io.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace meander::cli {
+
+void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
+                         std::string_view option) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+    std::string list;
+    for (std::string_view e : extensions) list += (list.empty() ? "" : ", ") + std::string(e);
+    throw UsageError(std::string(option) + " " + path.string() + ": unsupported extension '" + ext + "' (expected " +
+                     list + ")");
+  }
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  if (!std::filesystem::is_directory(folder))
+    throw IOError(path.string() + ": cannot write: folder '" + folder.string() + "' does not exist");
+}
+
+void StageLog::lap(std::string_view stage) {
+  const auto now = std::chrono::steady_clock::now();
+  add(stage, std::chrono::duration<double>(now - start_).count());
+  start_ = now;
+}
+
+void StageLog::add(std::string_view stage, double seconds) {
+  if (verbose_) std::fprintf(stderr, "  %-14.*s %9.1f ms\n", int(stage.size()), stage.data(), seconds * 1e3);
+}
+
+void StageLog::note(const std::string& line) {
+  if (verbose_) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log) {
+  PolygonMesh mesh = read_mesh(path);
+  log.lap("read");
+  RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict});
+  for (const std::string& line : repaired.repairs) std::fprintf(stderr, "%s: repaired: %s\n", path.string().c_str(), line.c_str());
+  log.lap("check");
+  return std::move(repaired.mesh);
+}
+
+} // namespace meander::cli

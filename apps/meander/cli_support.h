@@ -1,0 +1,39 @@
+// Small helpers the subcommands share.
+#pragma once
+
+#include "meander/mesh.h"
+
+#include <chrono>
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace meander::cli {
+
+// Checks before any work is done that `path` has one of the extensions and that its
+// folder exists, so a long run does not end in a refusal. Throws UsageError / IOError.
+void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
+                         std::string_view option);
+
+// Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ..."),
+// or refuses it under strict. Adds the read and check times to the log when verbose.
+class StageLog;
+PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log);
+
+// Prints "  stage    12.3 ms" lines on stderr when verbose.
+class StageLog {
+public:
+  explicit StageLog(bool verbose) : verbose_(verbose), start_(std::chrono::steady_clock::now()) {}
+  void lap(std::string_view stage);
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+  void add(std::string_view stage, double seconds);
+  void note(const std::string& line);
+  bool verbose() const { return verbose_; }
+
+private:
+  bool verbose_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+} // namespace meander::cli

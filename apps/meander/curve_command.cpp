@@ -1,0 +1,66 @@
+#include "cli_support.h"
+#include "commands.h"
+
+#include "meander/io.h"
+#include "meander/pipeline.h"
+
+#include <memory>
+
+namespace meander::cli {
+
+namespace {
+
+struct CurveArgs {
+  std::string input, output, triangles;
+  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
+  uint64_t seed = 1;
+  int samples = 4;
+  bool strict = false, verbose = false;
+};
+
+void run_curve(const CurveArgs& a) {
+  const CurveJob job{.quadrangulation = parse_quadrangulation(a.quad),
+                     .cycle = {.tree = parse_tree_strategy(a.tree), .seed = a.seed},
+                     .curve = {.smoothing = parse_smoothing(a.smooth), .samples = a.samples}};
+  require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
+  if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
+
+  StageLog log(a.verbose);
+  PolygonMesh mesh = read_and_repair(a.input, a.strict, log);
+  StageTimes times;
+  const CurveResult result = make_curve(std::move(mesh), job, &times);
+  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.restart();
+
+  write_polylines(result.curves, a.output);
+  log.lap("write curve");
+  if (!a.triangles.empty()) {
+    write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
+    log.lap("write cycle");
+  }
+  log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
+           (result.curves.size() == 1 ? "" : "s") + ", " + std::to_string(result.curves.points.size()) + " points");
+  if (!a.triangles.empty())
+    log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.triangles.size()) +
+             " triangles in cycle order");
+}
+
+} // namespace
+
+Command add_curve_command(CLI::App& parent) {
+  auto args = std::make_shared<CurveArgs>();
+  CLI::App* app = parent.add_subcommand("curve", "Make the closed curve(s) that cover a mesh's surface (one per connected component)");
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_option("-o,--output", args->output, "output curve: .obj (l elements), .ply (binary edges), .json, .svg")->required();
+  app->add_option("--quad", args->quad, "quadrangulation")->check(CLI::IsMember({"dual-simplest", "catmull-clark", "none"}))->capture_default_str();
+  app->add_option("--tree", args->tree, "spanning tree strategy: the style of the meander")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
+  app->add_option("--seed", args->seed, "random seed (same seed, same output)")->capture_default_str();
+  app->add_option("--smooth", args->smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
+  app->add_option("--samples", args->samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
+  app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
+  app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
+  app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
+  return {app, [args] { run_curve(*args); }};
+}
+
+} // namespace meander::cli

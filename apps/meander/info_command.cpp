@@ -1,0 +1,108 @@
+#include "commands.h"
+
+#include "meander/check.h"
+#include "meander/io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+
+namespace meander::cli {
+
+namespace {
+
+struct InfoArgs {
+  std::string input;
+  bool json = false;
+};
+
+std::string genus_text(const ComponentReport& c) {
+  if (c.genus < 0) return "n/a (non-manifold)";
+  return c.orientable ? std::to_string(c.genus) : std::to_string(c.genus) + " cross-cap" + (c.genus == 1 ? "" : "s");
+}
+
+void print_json(const std::string& input, const MeshReport& r) {
+  nlohmann::ordered_json j;
+  j["file"] = input;
+  j["vertices"] = r.vertices;
+  j["faces"] = r.faces;
+  nlohmann::ordered_json sizes = nlohmann::ordered_json::object();
+  for (const auto& [size, count] : r.faces_by_size) sizes[std::to_string(size)] = count;
+  j["faces_by_size"] = sizes;
+  j["edges"] = r.edges;
+  j["boundary_edges"] = r.boundary_edges;
+  j["boundary_loops"] = r.boundary_loops;
+  j["components"] = r.components.size();
+  j["orientable"] = r.orientable;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["degenerate_faces"] = r.degenerate_faces;
+  j["zero_area_faces"] = r.zero_area_faces;
+  j["duplicate_faces"] = r.duplicate_faces;
+  j["unreferenced_vertices"] = r.unreferenced_vertices;
+  j["non_finite_positions"] = r.non_finite_positions;
+  j["out_of_range_indices"] = r.out_of_range_indices;
+  j["misoriented_edges"] = r.misoriented_edges;
+  if (!r.bounding_box.empty())
+    j["bounding_box"] = {{"min", {r.bounding_box.min.x, r.bounding_box.min.y, r.bounding_box.min.z}},
+                         {"max", {r.bounding_box.max.x, r.bounding_box.max.y, r.bounding_box.max.z}}};
+  nlohmann::ordered_json comps = nlohmann::ordered_json::array();
+  for (const ComponentReport& c : r.components)
+    comps.push_back({{"faces", c.faces},
+                     {"vertices", c.vertices},
+                     {"edges", c.edges},
+                     {"boundary_loops", c.boundary_loops},
+                     {"euler_characteristic", c.euler_characteristic},
+                     {"manifold", c.manifold},
+                     {"orientable", c.orientable},
+                     {"genus", c.genus}});
+  j["component_details"] = comps;
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+void print_text(const std::string& input, const MeshReport& r) {
+  std::string sizes;
+  for (const auto& [size, count] : r.faces_by_size) {
+    const char* name = size == 3 ? "triangles" : size == 4 ? "quads" : nullptr;
+    sizes += (sizes.empty() ? "" : ", ") + std::to_string(count) + " " + (name ? name : std::to_string(size) + "-gons");
+  }
+  std::printf("file                   %s\n", input.c_str());
+  std::printf("vertices               %d\n", r.vertices);
+  std::printf("faces                  %d (%s)\n", r.faces, sizes.c_str());
+  std::printf("edges                  %d\n", r.edges);
+  std::printf("boundary               %d edges in %d loops\n", r.boundary_edges, r.boundary_loops);
+  std::printf("components             %zu\n", r.components.size());
+  std::printf("orientable             %s\n", r.orientable ? "yes" : "no");
+  std::printf("non-manifold           %d edges, %d vertices\n", r.non_manifold_edges, r.non_manifold_vertices);
+  std::printf("degenerate faces       %d (and %d with zero area)\n", r.degenerate_faces, r.zero_area_faces);
+  std::printf("duplicate faces        %d\n", r.duplicate_faces);
+  std::printf("unreferenced vertices  %d\n", r.unreferenced_vertices);
+  std::printf("non-finite positions   %d\n", r.non_finite_positions);
+  std::printf("misoriented edges      %d\n", r.misoriented_edges);
+  if (!r.bounding_box.empty())
+    std::printf("bounding box           (%g, %g, %g) - (%g, %g, %g)\n", r.bounding_box.min.x, r.bounding_box.min.y,
+                r.bounding_box.min.z, r.bounding_box.max.x, r.bounding_box.max.y, r.bounding_box.max.z);
+  for (size_t i = 0; i < r.components.size(); ++i) {
+    const ComponentReport& c = r.components[i];
+    std::printf("component %-4zu         %d faces, %d vertices, %d edges, %d boundary loops, chi %lld, %s, genus %s\n", i,
+                c.faces, c.vertices, c.edges, c.boundary_loops, (long long)c.euler_characteristic,
+                c.orientable ? "orientable" : "non-orientable", genus_text(c).c_str());
+  }
+}
+
+} // namespace
+
+Command add_info_command(CLI::App& parent) {
+  auto args = std::make_shared<InfoArgs>();
+  CLI::App* app = parent.add_subcommand("info", "Describe a mesh: counts, topology per component, and every problem found");
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_flag("--json", args->json, "print JSON instead of text");
+  return {app, [args] {
+            const MeshReport report = inspect(read_mesh(args->input));
+            if (args->json) print_json(args->input, report);
+            else print_text(args->input, report);
+          }};
+}
+
+} // namespace meander::cli
