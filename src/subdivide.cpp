@@ -46,7 +46,9 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) 
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
   if (!refiner) throw TopologyError("OpenSubdiv refused the mesh topology (is it manifold?)");
-  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(options.levels));
+  Far::TopologyRefiner::UniformOptions uniform(options.levels);
+  uniform.fullTopologyInLastLevel = true; // Limit() needs it
+  refiner->RefineUniform(uniform);
 
   std::vector<Point> points(size_t(refiner->GetNumVerticesTotal()));
   for (int32_t v = 0; v < mesh.num_vertices(); ++v) {

@@ -45,6 +45,22 @@ TEST(Shapes, TopologyAndSize) {
   }
 }
 
+// The pretzel is OpenSubdiv's limit surface: a real surface, not collapsed points (a
+// refinement without full topology in the last level makes Limit() fail and leaves
+// zeros), with no zero-length edge.
+TEST(Shapes, PretzelIsALimitSurfaceWithoutCollapsedEdges) {
+  const PolygonMesh m = genus_surface(2, 2000);
+  const Box3 box = bounding_box(m.positions);
+  EXPECT_GT(box.max.x - box.min.x, 4);
+  EXPECT_GT(box.max.y - box.min.y, 2);
+  EXPECT_GT(box.max.z - box.min.z, 0.5);
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const auto v = m.face(f);
+    for (size_t i = 0; i < v.size(); ++i)
+      ASSERT_GT(norm(m.positions[size_t(v[i])] - m.positions[size_t(v[(i + 1) % v.size()])]), 1e-4) << "face " << f;
+  }
+}
+
 TEST(Shapes, RefusesUnknownNamesAndSizes) {
   EXPECT_THROW(make_shape("klein", 100), UsageError);
   EXPECT_THROW(make_shape("sphere", 0), UsageError);
