@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace meander {
 namespace {
 
@@ -22,6 +24,7 @@ TEST(Connectivity, TwoTrianglesShareOneEdge) {
     }
   }
   EXPECT_EQ(interior, 1);
+  EXPECT_TRUE(std::is_sorted(c.edge_vertices.begin(), c.edge_vertices.end()));
   EXPECT_EQ(c.halfedge_edge[1], c.halfedge_edge[3]); // 1->2 in face 0, 2->1 in face 1
   EXPECT_EQ(halfedge_target(m, c, 2), 0);
 }
@@ -38,6 +41,25 @@ TEST(Connectivity, NonManifoldEdgeHasDegreeThree) {
   for (int32_t e = 0; e < c.num_edges(); ++e) degree3 += c.edge_degree(e) == 3;
   EXPECT_EQ(degree3, 1);
   EXPECT_EQ(c.num_edges(), 7);
+}
+
+// A vertex of high valence (a fan of 200 triangles around vertex 0) takes the sort
+// path for long ranges; every spoke edge must still be found with both its faces.
+TEST(Connectivity, HighValenceFan) {
+  PolygonMesh m;
+  m.positions.resize(202);
+  for (int32_t i = 1; i <= 200; ++i) m.add_face({0, i, i % 200 + 1});
+  const Connectivity c = build_connectivity(m);
+  EXPECT_EQ(c.num_edges(), 400);
+  int spokes = 0;
+  for (int32_t e = 0; e < c.num_edges(); ++e)
+    if (c.edge_vertices[e][0] == 0) {
+      ++spokes;
+      EXPECT_EQ(c.edge_degree(e), 2);
+      for (int32_t h : c.halfedges(e)) EXPECT_EQ(c.halfedge_edge[h], e);
+    }
+  EXPECT_EQ(spokes, 200);
+  EXPECT_TRUE(std::is_sorted(c.edge_vertices.begin(), c.edge_vertices.end()));
 }
 
 } // namespace

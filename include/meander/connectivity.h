@@ -18,8 +18,7 @@ namespace meander {
 // of its face. Edge e joins edge_vertices[e] = {lo, hi} (lo < hi) and is crossed by the
 // halfedges edge_halfedges[edge_start[e] .. edge_start[e+1]) in increasing order:
 // 1 on a boundary edge, 2 on a manifold interior edge, more on a non-manifold edge.
-// Edges are numbered by increasing lo, then by the first halfedge crossing them, so the
-// numbering depends only on the mesh, never on a hash or an allocation.
+// Edges are numbered by increasing (lo, hi).
 struct Connectivity {
   std::vector<int32_t> halfedge_edge;
   std::vector<int32_t> halfedge_face;
@@ -34,8 +33,9 @@ struct Connectivity {
   }
 };
 
-// Builds the edge connectivity in O(corners + vertices) time (counting sort by the lower
-// vertex, then a stamp array per upper vertex; no hashing, no sorting by comparison).
+// Builds the edge connectivity in O(corners + vertices) time for bounded valence: a
+// counting sort by the lower vertex, then a sort of each vertex's few halfedges by the
+// upper vertex (O(k log k) for a vertex of valence k). No hashing.
 // Requires every face index to be in range (readers guarantee it); faces of any size.
 Connectivity build_connectivity(const PolygonMesh& mesh);
 
