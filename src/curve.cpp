@@ -9,8 +9,9 @@ namespace meander {
 
 Polylines control_polygons(const QuadMesh& quads, const TriangleCycle& cycle) {
   Polylines out;
-  out.points.reserve(cycle.triangles.size());
-  for (const auto& [p, apex, n] : cycle.triangles) {
+  out.points.reserve(cycle.order.size());
+  for (int32_t id : cycle.order) {
+    const auto [p, apex, n] = cycle_triangle(quads, id);
     const Vec3 a = quads.positions[size_t(apex)], b = quads.positions[size_t(p)], c = quads.positions[size_t(n)];
     out.points.push_back((a * 2.0f + b + c) * 0.25f);
   }

@@ -49,57 +49,53 @@ void require_closed_sides(const QuadMesh& m) {
 TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) {
   require_closed_sides(m);
   const int32_t nq = m.num_quads();
+  if (nq >= (1 << 29)) throw UsageError("the quad mesh has " + std::to_string(nq) + " quads; at most 2^29 are supported");
   TriangleCycle result;
   result.diagonal.assign(size_t(nq), 0);
 
   // With every quad split along corners 0-2 the triangles form disjoint loops (each
-  // triangle has two quad sides, each side two triangles). Label them.
-  std::vector<int32_t> loop(2 * size_t(nq), -1);
-  int32_t num_loops = 0;
+  // triangle has two quad sides, each side two triangles): the nodes of the graph.
+  Graph graph;
+  std::vector<int32_t> edge_quad;
+  auto join = [&](int32_t q, int32_t a, int32_t b) {
+    if (a == b) return;
+    graph.edges.push_back({a, b});
+    edge_quad.push_back(q);
+  };
   if (m.face_point_offset >= 0) {
-    num_loops = int32_t(m.positions.size()) - m.face_point_offset;
-    for (int32_t q = 0; q < nq; ++q) {
-      loop[size_t(2 * q)] = m.quads[size_t(q)][1] - m.face_point_offset; // unused for half quads
-      loop[size_t(2 * q + 1)] = m.quads[size_t(q)][3] - m.face_point_offset;
-    }
+    // Dual of Simplest: the loops are the faces, named by the face points.
+    graph.num_nodes = int32_t(m.positions.size()) - m.face_point_offset;
+    for (int32_t q = 0; q < nq; ++q)
+      if (!m.is_half(q)) join(q, m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset);
   } else {
+    std::vector<int32_t> loop(2 * size_t(nq), -1);
     for (int32_t q = 0; q < nq; ++q)
       for (int a = m.is_half(q) ? 3 : 1; a <= 3; a += 2)
         if (loop[size_t(slot(q, a))] < 0) {
-          walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = num_loops; });
-          ++num_loops;
+          walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = graph.num_nodes; });
+          ++graph.num_nodes;
         }
+    for (int32_t q = 0; q < nq; ++q)
+      if (!m.is_half(q)) join(q, loop[size_t(2 * q)], loop[size_t(2 * q + 1)]);
   }
-
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  Graph graph;
-  graph.num_nodes = num_loops;
-  std::vector<int32_t> edge_quad;
-  for (int32_t q = 0; q < nq; ++q) {
-    if (m.is_half(q)) continue;
-    const int32_t a = loop[size_t(2 * q)], b = loop[size_t(2 * q + 1)];
-    if (a != b) {
-      graph.edges.push_back({a, b});
-      edge_quad.push_back(q);
-    }
-  }
-  std::vector<int32_t>().swap(loop);
   for (int32_t e : spanning_forest(graph, options.tree, options.seed)) result.diagonal[size_t(edge_quad[size_t(e)])] = 1;
+  graph = Graph();
+  std::vector<int32_t>().swap(edge_quad);
 
   std::vector<uint8_t> visited(2 * size_t(nq), 0);
-  result.triangles.reserve(2 * size_t(nq));
+  result.order.reserve(2 * size_t(nq));
   for (int32_t q = 0; q < nq; ++q) {
     const uint8_t d = result.diagonal[size_t(q)];
     for (int a = m.is_half(q) ? 3 : 1 - d; a <= 3; a += 2) {
       if (visited[size_t(slot(q, a))]) continue;
       walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) {
         visited[size_t(slot(tq, ta))] = 1;
-        const auto& c = m.quads[size_t(tq)];
-        result.triangles.push_back({c[size_t((ta + 3) & 3)], c[size_t(ta)], c[size_t((ta + 1) & 3)]});
+        result.order.push_back(4 * tq + ta);
       });
-      result.cycle_start.push_back(int32_t(result.triangles.size()));
+      result.cycle_start.push_back(int32_t(result.order.size()));
     }
   }
   return result;
@@ -127,8 +123,8 @@ std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {
       expected[key({c[3], c[0], c[1]})] = {q, 0};
     }
   }
-  if (expected.size() != cycle.triangles.size())
-    return "the cycles hold " + std::to_string(cycle.triangles.size()) + " triangles but the triangulation has " +
+  if (int64_t(expected.size()) != cycle.num_triangles())
+    return "the cycles hold " + std::to_string(cycle.num_triangles()) + " triangles but the triangulation has " +
            std::to_string(expected.size());
 
   UnionFind components(nq);
@@ -142,14 +138,18 @@ std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {
     if (last - first < 2) return "cycle " + std::to_string(k) + " has fewer than 2 triangles";
     int32_t component = -1;
     for (int32_t i = first; i < last; ++i) {
-      const auto t = cycle.triangles[size_t(i)];
+      const int32_t id = cycle.order[size_t(i)];
+      if (id < 0 || (id >> 2) >= nq) return "triangle " + std::to_string(i) + " names no quad";
+      const auto t = cycle_triangle(m, id);
       auto it = expected.find(key(t));
       if (it == expected.end()) return "triangle " + std::to_string(i) + " is not a triangle of the triangulation";
       if (++it->second[1] > 1) return "triangle " + std::to_string(i) + " appears twice";
       const int32_t c = components.find(it->second[0]);
       if (component < 0) component = c;
       if (c != component) return "cycle " + std::to_string(k) + " spans two components";
-      const auto u = cycle.triangles[size_t(i + 1 == last ? first : i + 1)];
+      const int32_t next = cycle.order[size_t(i + 1 == last ? first : i + 1)];
+      if (next < 0 || (next >> 2) >= nq) return "triangle " + std::to_string(i + 1) + " names no quad";
+      const auto u = cycle_triangle(m, next);
       int shared = 0;
       for (int32_t a : t) shared += a == u[0] || a == u[1] || a == u[2];
       if (shared < 2)

@@ -12,14 +12,15 @@ namespace {
 // The control point is the paper's weighted centre (2 p_apex + p + n) / 4.
 TEST(Curve, ControlPointIsTheWeightedCentre) {
   QuadMesh q;
-  q.positions = {{0, 0, 0}, {4, 0, 0}, {0, 8, 0}};
+  q.positions = {{0, 0, 0}, {4, 0, 0}, {0, 8, 0}, {4, 8, 0}};
+  q.quads = {{1, 0, 2, 3}};
   TriangleCycle c;
-  c.triangles = {{1, 0, 2}, {2, 1, 0}};
+  c.order = {4 * 0 + 1, 4 * 0 + 2}; // apex corner 1 (vertex 0), then apex corner 2 (vertex 2)
   c.cycle_start = {0, 2};
   const Polylines p = control_polygons(q, c);
   ASSERT_EQ(p.points.size(), 2u);
-  EXPECT_EQ(p.points[0], (Vec3{1, 2, 0}));  // (2*(0,0,0) + (4,0,0) + (0,8,0)) / 4
-  EXPECT_EQ(p.points[1], (Vec3{2, 2, 0}));  // (2*(4,0,0) + (0,8,0) + (0,0,0)) / 4
+  EXPECT_EQ(p.points[0], (Vec3{1, 2, 0})); // (2*(0,0,0) + (4,0,0) + (0,8,0)) / 4
+  EXPECT_EQ(p.points[1], (Vec3{1, 6, 0})); // (2*(0,8,0) + (0,0,0) + (4,8,0)) / 4
 }
 
 Polylines square() {

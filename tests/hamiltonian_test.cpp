@@ -52,7 +52,7 @@ TEST_P(CycleOnShape, DualSimplestGivesOneCyclePerComponent) {
   EXPECT_EQ(cycle.num_cycles(), shape.components);
   int32_t boundary = 0;
   for (int32_t e = 0; e < c.num_edges(); ++e) boundary += c.edge_degree(e) == 1;
-  EXPECT_EQ(int64_t(cycle.triangles.size()), 2 * int64_t(c.num_edges()) - boundary);
+  EXPECT_EQ(int64_t(cycle.order.size()), 2 * int64_t(c.num_edges()) - boundary);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
@@ -87,7 +87,7 @@ TEST(Cycle, CatmullClarkQuadsOfATorus) {
   const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = TreeStrategy::uniform, .seed = 3});
   EXPECT_EQ(verify_cycle(quads, cycle), "");
   EXPECT_EQ(cycle.num_cycles(), 1);
-  EXPECT_EQ(cycle.triangles.size(), 2 * quads.quads.size());
+  EXPECT_EQ(cycle.order.size(), 2 * quads.quads.size());
 }
 
 TEST(Cycle, QuadsAsIsOfASubdividedPretzel) {
@@ -118,12 +118,12 @@ TEST(Cycle, VerifierCatchesAMissedMerge) {
   TriangleCycle cycle = hamiltonian_cycle(quads);
   ASSERT_EQ(verify_cycle(quads, cycle), "");
   // Split the single cycle into two halves: still every triangle once, but two cycles.
-  const int32_t half = int32_t(cycle.triangles.size()) / 2;
-  cycle.cycle_start = {0, half, int32_t(cycle.triangles.size())};
+  const int32_t half = int32_t(cycle.order.size()) / 2;
+  cycle.cycle_start = {0, half, int32_t(cycle.order.size())};
   EXPECT_NE(verify_cycle(quads, cycle), "");
   // Drop the last triangle: a triangle is missing.
   TriangleCycle missing = hamiltonian_cycle(quads);
-  missing.triangles.pop_back();
+  missing.order.pop_back();
   missing.cycle_start.back() -= 1;
   EXPECT_NE(verify_cycle(quads, missing), "");
 }
@@ -135,7 +135,7 @@ TEST(Cycle, SameSeedSameCycleOtherSeedOtherCycle) {
     const TriangleCycle a = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
     const TriangleCycle b = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
     const TriangleCycle c = hamiltonian_cycle(quads, {.tree = s, .seed = 6});
-    EXPECT_EQ(a.triangles, b.triangles) << to_string(s);
+    EXPECT_EQ(a.order, b.order) << to_string(s);
     EXPECT_NE(a.diagonal, c.diagonal) << to_string(s);
   }
 }

@@ -41,7 +41,7 @@ void run_curve(const CurveArgs& a) {
   log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
            (result.curves.size() == 1 ? "" : "s") + ", " + std::to_string(result.curves.points.size()) + " points");
   if (!a.triangles.empty())
-    log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.triangles.size()) +
+    log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.num_triangles()) +
              " triangles in cycle order");
 }
 

@@ -19,23 +19,33 @@ struct CycleOptions {
 };
 
 // The Hamiltonian cycles of the triangulated quad mesh. Cycle k is the triangles
-// triangles[cycle_start[k] .. cycle_start[k+1]) in order; consecutive triangles (and the
-// last and the first) share a quad side. Each triangle is (p, apex, n): the apex is the
-// corner between its two quad sides (the paper's p00 = p01), p and n the ends of its
-// diagonal, in the quad's orientation. diagonal[q] is 0 when quad q is split along
-// corners 0-2 and 1 along corners 1-3.
+// order[cycle_start[k] .. cycle_start[k+1]) in order; consecutive triangles (and the last
+// and the first) share a quad side. A triangle is named 4*q + apex: quad q and the corner
+// between its two quad sides (the paper's p00 = p01); cycle_triangle() gives its vertices.
+// One int per triangle rather than three keeps the largest array of the pipeline small.
+// diagonal[q] is 0 when quad q is split along corners 0-2 and 1 along corners 1-3.
 struct TriangleCycle {
-  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<int32_t> order;
   std::vector<int32_t> cycle_start{0};
   std::vector<uint8_t> diagonal;
 
   int32_t num_cycles() const { return int32_t(cycle_start.size()) - 1; }
+  int32_t num_triangles() const { return int32_t(order.size()); }
 };
+
+// The vertices (p, apex, n) of triangle `id` (= 4*q + apex): the apex between p and n,
+// which are the ends of the diagonal, in the quad's orientation.
+inline std::array<int32_t, 3> cycle_triangle(const QuadMesh& quads, int32_t id) {
+  const auto& c = quads.quads[size_t(id >> 2)];
+  const int a = id & 3;
+  return {c[size_t((a + 3) & 3)], c[size_t(a)], c[size_t((a + 1) & 3)]};
+}
 
 // Builds one cycle per connected component of the quad mesh (components joined across
 // quad sides). Every full quad contributes two triangles, a half quad one. Time O(quads)
 // plus the spanning forest. Throws TopologyError if a full quad has a side with no
-// neighbour (a quad mesh with boundary: only half quads may end at a boundary).
+// neighbour (a quad mesh with boundary: only half quads may end at a boundary), and
+// UsageError above 2^29 quads (triangle names must fit an int32).
 TriangleCycle hamiltonian_cycle(const QuadMesh& quads, const CycleOptions& options = {});
 
 // Independent check of a cycle against its quad mesh, sharing no code with the
