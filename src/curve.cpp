@@ -7,13 +7,19 @@
 
 namespace meander {
 
+namespace {
+
+// The paper's weighted centre: the triangle read as a quad whose apex is doubled.
+Vec3 control_point(Vec3 p, Vec3 apex, Vec3 n) { return (apex * 2.0f + p + n) * 0.25f; }
+
+} // namespace
+
 Polylines control_polygons(const QuadMesh& quads, const TriangleCycle& cycle) {
   Polylines out;
   out.points.reserve(cycle.order.size());
   for (int32_t id : cycle.order) {
     const auto [p, apex, n] = cycle_triangle(quads, id);
-    const Vec3 a = quads.positions[size_t(apex)], b = quads.positions[size_t(p)], c = quads.positions[size_t(n)];
-    out.points.push_back((a * 2.0f + b + c) * 0.25f);
+    out.points.push_back(control_point(quads.positions[size_t(p)], quads.positions[size_t(apex)], quads.positions[size_t(n)]));
   }
   out.start = cycle.cycle_start;
   return out;
@@ -53,30 +59,55 @@ Vec3 catmull_rom(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, float u) {
 
 } // namespace
 
-Polylines smooth_curves(const Polylines& control, const CurveOptions& options) {
+namespace {
+
+// Samples closed curves whose control point i of curve k is point(start[k] + i), so
+// that the control polygon need not exist in memory.
+template <typename Point>
+Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& options, Point point) {
   if (options.samples < 1) throw UsageError("--samples must be at least 1 (got " + std::to_string(options.samples) + ")");
-  if (options.smoothing == Smoothing::none) return control;
-  const int k = options.samples;
-  if (double(control.points.size()) * k > 2147483647.0)
+  const int k = options.smoothing == Smoothing::none ? 1 : options.samples;
+  if (double(start.back()) * k > 2147483647.0)
     throw UsageError("--samples " + std::to_string(k) + " would make more than 2^31 curve points");
   Polylines out;
-  out.points.resize(control.points.size() * size_t(k));
-  out.start.resize(control.start.size());
-  for (size_t i = 0; i < control.start.size(); ++i) out.start[i] = control.start[i] * k;
-  for (int32_t c = 0; c < control.size(); ++c) {
-    const auto p = control.polyline(c);
-    const int32_t n = int32_t(p.size());
-    Vec3* dst = out.points.data() + size_t(out.start[size_t(c)]);
+  out.points.resize(size_t(start.back()) * size_t(k));
+  out.start.resize(start.size());
+  for (size_t i = 0; i < start.size(); ++i) out.start[i] = start[i] * k;
+  for (size_t c = 0; c + 1 < start.size(); ++c) {
+    const int32_t first = start[c], n = start[c + 1] - first;
+    Vec3* dst = out.points.data() + size_t(out.start[c]);
+    if (n == 0) continue;
+    // A window of four control points slides along the closed polygon.
+    Vec3 p0 = point(first + n - 1), p1 = point(first), p2 = point(first + (1 % n)), p3 = point(first + (2 % n));
     for (int32_t i = 0; i < n; ++i) {
-      const Vec3 p0 = p[size_t((i + n - 1) % n)], p1 = p[size_t(i)], p2 = p[size_t((i + 1) % n)],
-                 p3 = p[size_t((i + 2) % n)];
-      for (int j = 0; j < k; ++j) {
-        const float u = float(j) / float(k);
-        *dst++ = options.smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+      if (options.smoothing == Smoothing::none) {
+        *dst++ = p1;
+      } else {
+        for (int j = 0; j < k; ++j) {
+          const float u = float(j) / float(k);
+          *dst++ = options.smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+        }
       }
+      p0 = p1;
+      p1 = p2;
+      p2 = p3;
+      p3 = point(first + (i + 3) % n);
     }
   }
   return out;
+}
+
+} // namespace
+
+Polylines smooth_curves(const Polylines& control, const CurveOptions& options) {
+  return sample_closed(control.start, options, [&](int32_t i) { return control.points[size_t(i)]; });
+}
+
+Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options) {
+  return sample_closed(cycle.cycle_start, options, [&](int32_t i) {
+    const auto [p, apex, n] = cycle_triangle(quads, cycle.order[size_t(i)]);
+    return control_point(quads.positions[size_t(p)], quads.positions[size_t(apex)], quads.positions[size_t(n)]);
+  });
 }
 
 } // namespace meander

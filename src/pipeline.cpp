@@ -56,8 +56,7 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
   watch.lap("quadrangulate");
   result.cycle = hamiltonian_cycle(result.quads, job.cycle);
   watch.lap("cycle");
-  const Polylines control = control_polygons(result.quads, result.cycle);
-  result.curves = smooth_curves(control, job.curve);
+  result.curves = cycle_curves(result.quads, result.cycle, job.curve);
   watch.lap("smooth");
   return result;
 }

@@ -67,8 +67,14 @@ TEST(Curve, NoneKeepsTheControlPolygonAndBadSamplesAreRefused) {
 TEST(Curve, SmoothCurveStaysNearTheSphere) {
   const PolygonMesh mesh = sphere(2000);
   const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
-  const Polylines curve = smooth_curves(control_polygons(quads, hamiltonian_cycle(quads)), {.samples = 3});
+  const TriangleCycle cycle = hamiltonian_cycle(quads);
+  const Polylines curve = smooth_curves(control_polygons(quads, cycle), {.samples = 3});
   ASSERT_EQ(curve.size(), 1);
+  for (Smoothing s : {Smoothing::bspline, Smoothing::catmull_rom, Smoothing::none}) {
+    // The streaming path gives exactly the points of the two-step one.
+    const CurveOptions options{.smoothing = s, .samples = 3};
+    EXPECT_EQ(cycle_curves(quads, cycle, options).points, smooth_curves(control_polygons(quads, cycle), options).points);
+  }
   for (Vec3 p : curve.points) {
     EXPECT_LT(norm(p), 1.0 + 1e-5);
     EXPECT_GT(norm(p), 0.97);

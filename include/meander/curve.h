@@ -32,4 +32,8 @@ struct CurveOptions {
 // Throws UsageError if samples < 1 or samples * points exceeds 2^31.
 Polylines smooth_curves(const Polylines& control, const CurveOptions& options = {});
 
+// smooth_curves(control_polygons(quads, cycle), options) without the control polygons in
+// memory: what the pipeline uses on large meshes.
+Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options = {});
+
 } // namespace meander
