@@ -76,12 +76,12 @@ private:
   std::vector<int32_t> stamp_;
 };
 
-// Why face `input_face` (`face` its vertices as given, `repeated` what RepeatFinder said)
+// Why face `input_face` (of `size` vertices as given, `repeated` what RepeatFinder said)
 // is not a polygon.
-std::string degenerate_reason(int32_t input_face, std::span<const int32_t> face, int32_t repeated) {
+std::string degenerate_reason(int32_t input_face, size_t size, int32_t repeated) {
   return "face " + std::to_string(input_face) +
          (repeated >= 0 ? " repeats vertex " + std::to_string(repeated)
-                        : " has only " + plural(int64_t(face.size()), "vertex", "vertices"));
+                        : " has only " + plural(int64_t(size), "vertex", "vertices"));
 }
 
 // Rewrites the faces of `m` in place and in order: `rewrite(f, face, out)` writes the new
@@ -133,31 +133,16 @@ FaceCleanup clean_faces(PolygonMesh& m, std::vector<int32_t>& origin) {
     if (!all_in_range(face, nv)) return -1;
     const int32_t repeated = repeats(face);
     if (repeated < 0 && face.size() >= 3) return keep_face(face, out);
-    const int32_t input_face = origin[size_t(f)];
-    const std::string reason = degenerate_reason(input_face, face, repeated);
-    int32_t n = 0;
+    int32_t n = 0; // collapsing overwrites `face` as it goes, never ahead of reading it
     for (const int32_t v : face)
       if (n == 0 || out[n - 1] != v) out[n++] = v;
     while (n > 1 && out[n - 1] == out[0]) --n;
-    if (n >= 3 && repeats({out, size_t(n)}) < 0) {
-      if (result.collapsed++ == 0) result.first_collapsed = reason;
-      return n;
-    }
-    if (result.dropped++ == 0) result.first_dropped = reason;
-    return -1;
+    const bool kept = n >= 3 && repeats({out, size_t(n)}) < 0;
+    if ((kept ? result.collapsed : result.dropped)++ == 0)
+      (kept ? result.first_collapsed : result.first_dropped) = degenerate_reason(origin[size_t(f)], face.size(), repeated);
+    return kept ? n : -1;
   });
   return result;
-}
-
-// The first face with fewer than 3 vertices or a repeated one, and the vertex it
-// repeats (-1 for none); {-1, -1} if every face is a polygon. Indices must be in range.
-std::pair<int32_t, int32_t> first_degenerate_face(const PolygonMesh& m) {
-  RepeatFinder repeats(m.num_vertices());
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    const int32_t repeated = repeats(m.face(f));
-    if (repeated >= 0 || m.face_size(f) < 3) return {f, repeated};
-  }
-  return {-1, -1};
 }
 
 // The other halfedge of a manifold edge e crossed by h.
@@ -174,81 +159,93 @@ bool misoriented(const PolygonMesh& m, const Connectivity& c, int32_t e) {
          m.face_vertices[size_t(c.edge_halfedges[size_t(i) + 1])];
 }
 
-int32_t count_misoriented(const PolygonMesh& m, const Connectivity& c) {
-  int32_t count = 0;
-  for (int32_t e = 0; e < c.num_edges(); ++e) count += misoriented(m, c, e);
-  return count;
-}
-
 // Faces a and b (without repeated vertices) are the same cycle, up to rotation and
-// orientation.
+// orientation. Called once per manifold edge, so it rejects early and never divides.
 bool same_cycle(std::span<const int32_t> a, std::span<const int32_t> b) {
-  if (a.size() != b.size()) return false;
   const size_t n = a.size();
-  const size_t k = size_t(std::find(b.begin(), b.end(), a[0]) - b.begin());
-  if (k == n) return false;
-  bool forward = true, backward = true;
-  for (size_t i = 1; i < n && (forward || backward); ++i) {
-    forward = forward && a[i] == b[(k + i) % n];
-    backward = backward && a[i] == b[(k + n - i) % n];
+  if (n != b.size()) return false;
+  size_t j = size_t(std::find(b.begin(), b.end(), a[0]) - b.begin());
+  if (j == n) return false;
+  const bool forward = b[j + 1 == n ? 0 : j + 1] == a[1];
+  for (size_t i = 1; i < n; ++i) {
+    j = forward ? (j + 1 == n ? 0 : j + 1) : (j == 0 ? n - 1 : j - 1);
+    if (a[i] != b[j]) return false;
   }
-  return forward || backward;
+  return true;
 }
 
-// Each face that repeats an earlier one, in increasing order, with the first face it
-// repeats. Such faces share every edge, so a face is only compared with the faces before
-// it on its least shared edge: one comparison per face on a manifold mesh.
-std::vector<std::pair<int32_t, int32_t>> find_duplicates(const PolygonMesh& m, const Connectivity& c) {
+// What one pass over the edges finds, in faces that are polygons with indices in range.
+// The checks share the pass because on a clean mesh it is most of what repair costs
+// beyond building the connectivity.
+struct EdgeScan {
+  int32_t boundary = 0, non_manifold = 0, first_non_manifold = -1, misoriented = 0;
+  // Corners (corner h is where halfedge h starts) joined when they are the corners at one
+  // vertex of the two faces of a manifold edge: each set is a fan.
+  UnionFind fans;
+  // Each face that repeats an earlier one, with the first face it repeats, by face.
   std::vector<std::pair<int32_t, int32_t>> duplicates;
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    int32_t edge = -1, degree = std::numeric_limits<int32_t>::max();
-    for (int32_t h = m.face_start[size_t(f)]; h < m.face_start[size_t(f) + 1] && degree > 2; ++h) {
-      const int32_t e = c.halfedge_edge[size_t(h)];
-      if (c.edge_degree(e) < degree) {
-        edge = e;
-        degree = c.edge_degree(e);
-      }
-    }
-    if (degree < 2) continue;
-    // Halfedges are listed in increasing order, so their faces are too.
-    for (const int32_t h : c.halfedges(edge)) {
-      const int32_t g = c.halfedge_face[size_t(h)];
-      if (g >= f) break;
-      if (same_cycle(m.face(f), m.face(g))) {
-        duplicates.emplace_back(f, g);
-        break;
-      }
-    }
-  }
-  return duplicates;
-}
+};
 
-// Corners (= halfedges: corner h is where halfedge h starts) joined when they are the
-// corners at the same vertex of the two faces of a manifold edge. Each set is then a fan.
-UnionFind join_fans(const PolygonMesh& m, const Connectivity& c) {
-  UnionFind corners(m.num_corners());
+EdgeScan scan_edges(const PolygonMesh& m, const Connectivity& c) {
+  EdgeScan s{.fans = UnionFind(m.num_corners())};
+  std::vector<int32_t> duplicate_of; // per face; allocated at the first duplicate
+  const auto found = [&](int32_t f, int32_t earlier) {
+    if (duplicate_of.empty()) duplicate_of.assign(size_t(m.num_faces()), -1);
+    duplicate_of[size_t(f)] = earlier;
+  };
   for (int32_t e = 0; e < c.num_edges(); ++e) {
-    if (c.edge_degree(e) != 2) continue;
+    const int32_t degree = c.edge_degree(e);
+    if (degree != 2) {
+      s.boundary += degree == 1;
+      if (degree > 2 && s.non_manifold++ == 0) s.first_non_manifold = e;
+      continue;
+    }
     const int32_t h1 = c.edge_halfedges[size_t(c.edge_start[size_t(e)])];
     const int32_t h2 = c.edge_halfedges[size_t(c.edge_start[size_t(e)]) + 1];
     const int32_t n1 = next_halfedge(m, c, h1), n2 = next_halfedge(m, c, h2);
     if (m.face_vertices[size_t(h1)] == m.face_vertices[size_t(h2)]) { // both leave the same vertex
-      corners.unite(h1, h2);
-      corners.unite(n1, n2);
+      ++s.misoriented;
+      s.fans.unite(h1, h2);
+      s.fans.unite(n1, n2);
     } else {
-      corners.unite(h1, n2);
-      corners.unite(n1, h2);
+      s.fans.unite(h1, n2);
+      s.fans.unite(n1, h2);
+    }
+    // Faces that repeat each other share every edge, so where they share a manifold edge
+    // no third face can repeat them.
+    const int32_t f1 = c.halfedge_face[size_t(h1)], f2 = c.halfedge_face[size_t(h2)];
+    if (same_cycle(m.face(f1), m.face(f2))) found(f2, f1);
+  }
+  // Faces with only non-manifold edges: compare with the faces before them on their least
+  // shared edge (listed in increasing order, so the first match is the first face).
+  for (int32_t f = 0; f < m.num_faces() && s.non_manifold > 0; ++f) {
+    int32_t edge = -1, degree = std::numeric_limits<int32_t>::max();
+    for (int32_t h = m.face_start[size_t(f)]; h < m.face_start[size_t(f) + 1] && degree > 2; ++h)
+      if (const int32_t e = c.halfedge_edge[size_t(h)]; c.edge_degree(e) < degree) {
+        edge = e;
+        degree = c.edge_degree(e);
+      }
+    if (degree <= 2) continue;
+    for (const int32_t h : c.halfedges(edge)) {
+      const int32_t g = c.halfedge_face[size_t(h)];
+      if (g >= f) break;
+      if (same_cycle(m.face(f), m.face(g))) {
+        found(f, g);
+        break;
+      }
     }
   }
-  return corners;
+  for (int32_t f = 0; f < int32_t(duplicate_of.size()); ++f)
+    if (duplicate_of[size_t(f)] >= 0) s.duplicates.emplace_back(f, duplicate_of[size_t(f)]);
+  return s;
 }
 
 // Number of fans at each vertex.
-std::vector<int32_t> count_fans(const PolygonMesh& m, UnionFind& corners) {
-  std::vector<int32_t> fans(size_t(m.num_vertices()), 0);
+std::vector<int32_t> count_fans(const PolygonMesh& m, const UnionFind& fans) {
+  std::vector<int32_t> count(size_t(m.num_vertices()), 0);
   for (int32_t h = 0; h < m.num_corners(); ++h)
-    if (corners.find(h) == h) ++fans[size_t(m.face_vertices[size_t(h)])];
-  return fans;
+    if (fans.is_root(h)) ++count[size_t(m.face_vertices[size_t(h)])];
+  return count;
 }
 
 // Gives every fan of a vertex but the first (the one holding its first corner) a copy of
@@ -328,23 +325,39 @@ std::vector<uint8_t> referenced(const PolygonMesh& m) {
   return used;
 }
 
-// Repair step 1: every index in range and every used position finite, or a refusal.
-// Returns which vertices are used.
-std::vector<uint8_t> check_indices_and_positions(const PolygonMesh& m, const std::string& prefix) {
+// Repair step 1 (every index in range and every used position finite, or a refusal),
+// and the search for step 2's first face, in one pass over the faces.
+struct FaceScan {
+  std::vector<uint8_t> used; // per vertex
+  int32_t first_degenerate = -1, repeated = -1; // a face with < 3 vertices or a repeat, and the vertex
+};
+
+FaceScan scan_faces(const PolygonMesh& m, const std::string& prefix) {
   const int32_t nv = m.num_vertices();
-  for (int32_t h = 0; h < m.num_corners(); ++h) {
-    const int32_t v = m.face_vertices[size_t(h)];
-    if (in_range(v, nv)) continue;
-    const auto f = std::upper_bound(m.face_start.begin(), m.face_start.end(), h) - m.face_start.begin() - 1;
-    throw TopologyError(prefix + "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
-                        " but the mesh has " + plural(nv, "vertex", "vertices"));
+  FaceScan s;
+  s.used.assign(size_t(nv), 0);
+  RepeatFinder repeats(nv);
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const std::span<const int32_t> face = m.face(f);
+    for (const int32_t v : face) {
+      if (!in_range(v, nv))
+        throw TopologyError(prefix + "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                            " but the mesh has " + plural(nv, "vertex", "vertices"));
+      s.used[size_t(v)] = 1;
+    }
+    if (s.first_degenerate < 0) {
+      const int32_t repeated = repeats(face);
+      if (repeated >= 0 || face.size() < 3) {
+        s.first_degenerate = f;
+        s.repeated = repeated;
+      }
+    }
   }
-  std::vector<uint8_t> used = referenced(m);
   for (int32_t v = 0; v < nv; ++v)
-    if (used[size_t(v)] && !is_finite(m.positions[size_t(v)]))
+    if (s.used[size_t(v)] && !is_finite(m.positions[size_t(v)]))
       throw InputError(prefix + "vertex " + std::to_string(v) + " has a non-finite position " +
                        point_name(m.positions[size_t(v)]));
-  return used;
+  return s;
 }
 
 // Twice the vector area of a face, in double.
@@ -362,7 +375,7 @@ double doubled_area(const PolygonMesh& m, std::span<const int32_t> face) {
   return std::sqrt(x * x + y * y + z * z);
 }
 
-// Makes each boundary loop one set of `corners` (the fans of join_fans): a boundary edge
+// Makes each boundary loop one set of `corners` (EdgeScan::fans): a boundary edge
 // joins the fans at its two ends, and a fan the two boundary edges that end it. Where a
 // fan ends at a non-manifold edge instead, the boundary has no single way on: the fans
 // at that vertex left with one boundary end are joined, as one walk along the boundary
@@ -400,13 +413,12 @@ void join_boundary_loops(const PolygonMesh& m, const Connectivity& c, UnionFind&
 // The topology part of inspect() on faces that are all polygons with indices in range.
 void inspect_topology(const PolygonMesh& m, MeshReport& report) {
   const Connectivity c = build_connectivity(m);
+  EdgeScan edges = scan_edges(m, c);
   report.edges = c.num_edges();
-  for (int32_t e = 0; e < c.num_edges(); ++e) {
-    report.boundary_edges += c.edge_degree(e) == 1;
-    report.non_manifold_edges += c.edge_degree(e) > 2;
-    report.misoriented_edges += misoriented(m, c, e);
-  }
-  report.duplicate_faces = int32_t(find_duplicates(m, c).size());
+  report.boundary_edges = edges.boundary;
+  report.non_manifold_edges = edges.non_manifold;
+  report.misoriented_edges = edges.misoriented;
+  report.duplicate_faces = int32_t(edges.duplicates.size());
 
   // Components: sheets joined across non-manifold edges, numbered by their first face
   // (sheets are numbered that way already).
@@ -441,11 +453,11 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
 
   // A vertex counts once per component: a manifold vertex is one fan, so in one
   // component; the few fans of non-manifold vertices are sorted out apart.
-  UnionFind corners = join_fans(m, c);
+  UnionFind& corners = edges.fans;
   const std::vector<int32_t> fans = count_fans(m, corners);
   std::vector<std::pair<int32_t, int32_t>> shared; // (vertex, component) of each fan of a non-manifold vertex
   for (int32_t h = 0; h < m.num_corners(); ++h) {
-    if (corners.find(h) != h) continue;
+    if (!corners.is_root(h)) continue;
     const int32_t v = m.face_vertices[size_t(h)];
     ComponentReport& k = component(c.halfedge_face[size_t(h)]);
     if (fans[size_t(v)] == 1) {
@@ -545,19 +557,20 @@ RepairResult repair(const PolygonMesh& mesh, std::string_view name, const Repair
 RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
   const std::string prefix = std::string(name) + ": ";
   const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
-  RepairResult result{std::move(mesh), {}};
+  RepairResult result{std::move(mesh), {}, {}};
   PolygonMesh& m = result.mesh;
   std::vector<std::string>& repairs = result.repairs;
 
   // 1. What cannot be repaired.
-  std::vector<uint8_t> used = check_indices_and_positions(m, prefix);
+  FaceScan scan = scan_faces(m, prefix);
+  std::vector<uint8_t>& used = scan.used;
   const int32_t input_faces = m.num_faces();
   std::vector<int32_t> origin; // the input face of each face of m; empty while they are the same
   const auto input_face = [&](int32_t f) { return origin.empty() ? f : origin[size_t(f)]; };
 
   // 2. Repeated vertices.
-  if (const auto [f, repeated] = first_degenerate_face(m); f >= 0) {
-    if (options.strict) refuse(degenerate_reason(f, m.face(f), repeated));
+  if (const int32_t f = scan.first_degenerate; f >= 0) {
+    if (options.strict) refuse(degenerate_reason(f, size_t(m.face_size(f)), scan.repeated));
     const FaceCleanup fix = clean_faces(m, origin);
     if (fix.collapsed > 0)
       repairs.push_back("collapsed repeated consecutive vertices in " + plural(fix.collapsed, "face", "faces") + " (" +
@@ -570,7 +583,8 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
 
   // 3. Duplicate faces.
   Connectivity c = build_connectivity(m);
-  if (const auto duplicates = find_duplicates(m, c); !duplicates.empty()) {
+  EdgeScan edges = scan_edges(m, c);
+  if (const auto duplicates = std::move(edges.duplicates); !duplicates.empty()) {
     const std::string example = "face " + std::to_string(input_face(duplicates[0].first)) + " duplicates face " +
                                 std::to_string(input_face(duplicates[0].second));
     if (options.strict) refuse(example);
@@ -583,6 +597,7 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
                       example + ")");
     used = referenced(m);
     c = build_connectivity(m);
+    edges = scan_edges(m, c);
   }
   if (m.num_faces() == 0)
     throw TopologyError(prefix + "no faces left after repair (" +
@@ -594,14 +609,11 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
   // 4. Non-manifold edges and vertices. Splitting each vertex into its fans also cuts the
   // edges, since the faces of a fan never cross a non-manifold edge.
   {
-    int32_t cut = 0, first_cut = -1;
-    for (int32_t e = 0; e < c.num_edges(); ++e)
-      if (c.edge_degree(e) > 2 && cut++ == 0) first_cut = e;
+    const int32_t cut = edges.non_manifold, first_cut = edges.first_non_manifold;
     if (cut > 0 && options.strict)
       refuse("edge " + edge_name(c.edge_vertices[size_t(first_cut)]) + " is shared by " +
              std::to_string(c.edge_degree(first_cut)) + " faces: mesh is not manifold");
-    UnionFind corners = join_fans(m, c);
-    const std::vector<int32_t> fans = count_fans(m, corners);
+    const std::vector<int32_t> fans = count_fans(m, edges.fans);
     int32_t split = 0, copies = 0, first_split = -1;
     for (int32_t v = 0; v < m.num_vertices(); ++v)
       if (fans[size_t(v)] > 1) {
@@ -617,18 +629,19 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
         repairs.push_back("cut " + plural(cut, "non-manifold edge", "non-manifold edges") + " (edge " +
                           edge_name(c.edge_vertices[size_t(first_cut)]) + " was shared by " +
                           std::to_string(c.edge_degree(first_cut)) + " faces)");
-      split_fans(m, corners, fans);
+      split_fans(m, edges.fans, fans);
       repairs.push_back("split " + plural(split, "non-manifold vertex", "non-manifold vertices") + " into " +
                         std::to_string(copies) + " copies (vertex " + std::to_string(first_split) + " had " +
                         std::to_string(first_fans) + " fans)");
       used.resize(size_t(m.num_vertices()), 1);
       c = build_connectivity(m);
+      edges = scan_edges(m, c);
     }
   }
 
   // 5. Orientation. A consistently oriented mesh (the usual case) has no misoriented edge
   // and needs no search.
-  if (count_misoriented(m, c) > 0) {
+  if (edges.misoriented > 0) {
     const Sheets sheets = find_sheets(m, c);
     if (options.strict)
       for (int32_t e = 0; e < c.num_edges(); ++e) {
@@ -659,10 +672,10 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
       repairs.push_back("re-oriented " + plural(flipped, "face", "faces") +
                         " to agree with their neighbours (first: face " + std::to_string(input_face(first_flipped)) + ")");
     if (non_orientable == 1)
-      repairs.push_back("component " + std::to_string(first_non_orientable) +
+      result.notices.push_back("component " + std::to_string(first_non_orientable) +
                         " is not orientable (Möbius-like); faces left as they are");
     else if (non_orientable > 1)
-      repairs.push_back(std::to_string(non_orientable) + " components are not orientable (Möbius-like; first: component " +
+      result.notices.push_back(std::to_string(non_orientable) + " components are not orientable (Möbius-like; first: component " +
                         std::to_string(first_non_orientable) + "); faces left as they are");
   }
 

@@ -3,21 +3,21 @@
 #pragma once
 
 #include <cstdint>
-#include <numeric>
+#include <utility>
 #include <vector>
 
 namespace meander {
 
 class UnionFind {
 public:
-  explicit UnionFind(int32_t n) : parent_(size_t(n)), size_(size_t(n), 1) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
+  explicit UnionFind(int32_t n) : parent_(size_t(n), -1) {}
 
   int32_t find(int32_t x) {
-    while (parent_[size_t(x)] != x) {
-      parent_[size_t(x)] = parent_[size_t(parent_[size_t(x)])];
-      x = parent_[size_t(x)];
+    for (int32_t p; (p = parent_[size_t(x)]) >= 0;) {
+      const int32_t grandparent = parent_[size_t(p)];
+      if (grandparent < 0) return p;
+      parent_[size_t(x)] = grandparent;
+      x = grandparent;
     }
     return x;
   }
@@ -27,15 +27,19 @@ public:
     a = find(a);
     b = find(b);
     if (a == b) return false;
-    if (size_[size_t(a)] < size_[size_t(b)]) std::swap(a, b);
+    if (parent_[size_t(a)] > parent_[size_t(b)]) std::swap(a, b); // a's set is the larger
+    parent_[size_t(a)] += parent_[size_t(b)];
     parent_[size_t(b)] = a;
-    size_[size_t(a)] += size_[size_t(b)];
     return true;
   }
 
+  // x stands for its set (find(x) == x), without the cost of a find.
+  bool is_root(int32_t x) const { return parent_[size_t(x)] < 0; }
+
 private:
+  // One array, so a find touches half the memory of separate parent and size arrays:
+  // parent_[x] is x's parent, or minus the size of x's set when x is a root.
   std::vector<int32_t> parent_;
-  std::vector<int32_t> size_;
 };
 
 } // namespace meander

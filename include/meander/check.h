@@ -79,10 +79,12 @@ struct RepairOptions {
 struct RepairResult {
   PolygonMesh mesh;
   // One line per repair made, with counts and an example, e.g. "split 6 non-manifold
-  // vertices into 13 copies (vertex 12 had 2 fans)"; also a line per notice that needs no
-  // repair ("component 0 is not orientable (Möbius-like); faces left as they are").
-  // Empty when the mesh was already fine, and then `mesh` is the input unchanged.
+  // vertices into 13 copies (vertex 12 had 2 fans)". Empty when the mesh needed nothing,
+  // and then `mesh` is the input unchanged.
   std::vector<std::string> repairs;
+  // What is worth telling but needs no repair, e.g. "component 0 is not orientable
+  // (Möbius-like); faces left as they are".
+  std::vector<std::string> notices;
 };
 
 // Makes a mesh that the quadrangulation and the cycle accept: every index in range,
