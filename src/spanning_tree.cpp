@@ -67,62 +67,50 @@ std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
   return forest;
 }
 
-// One root per component, chosen at random among its nodes, so the seed moves the
-// root. Returns the component of each node and the roots in component order.
-std::vector<int32_t> random_roots(const Graph& g, const Adjacency& a, Random& rng, std::vector<int32_t>& component) {
-  component.assign(size_t(g.num_nodes), -1);
-  std::vector<int32_t> roots, queue;
-  for (int32_t s = 0; s < g.num_nodes; ++s) {
-    if (component[size_t(s)] >= 0) continue;
-    const int32_t id = int32_t(roots.size());
-    queue.assign(1, s);
-    component[size_t(s)] = id;
-    for (size_t i = 0; i < queue.size(); ++i)
-      for (int32_t k = a.start[size_t(queue[i])]; k < a.start[size_t(queue[i]) + 1]; ++k) {
-        const int32_t n = a.adjacent[size_t(k)][0];
-        if (component[size_t(n)] < 0) {
-          component[size_t(n)] = id;
-          queue.push_back(n);
-        }
-      }
-    roots.push_back(queue[rng.below(uint32_t(queue.size()))]);
-  }
-  return roots;
-}
+// Nodes in a rotated order starting at a random node: the first node of each component
+// in this order is its root, so the seed moves the roots without a pass to find the
+// components first.
+struct RotatedNodes {
+  int32_t n, offset;
+  RotatedNodes(int32_t count, Random& rng) : n(count), offset(count > 0 ? int32_t(rng.below(uint32_t(count))) : 0) {}
+  int32_t operator[](int32_t i) const { return i + offset < n ? i + offset : i + offset - n; }
+};
 
 std::vector<int32_t> breadth_first(const Graph& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
-  std::vector<int32_t> component;
-  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
   std::vector<int32_t> forest, queue;
   queue.reserve(size_t(g.num_nodes));
-  for (int32_t r : roots) {
-    seen[size_t(r)] = 1;
-    queue.push_back(r);
-  }
-  for (size_t i = 0; i < queue.size(); ++i)
-    for (int32_t k = a.start[size_t(queue[i])]; k < a.start[size_t(queue[i]) + 1]; ++k) {
-      const auto [n, e] = a.adjacent[size_t(k)];
-      if (!seen[size_t(n)]) {
-        seen[size_t(n)] = 1;
-        forest.push_back(e);
-        queue.push_back(n);
+  for (int32_t i = 0; i < g.num_nodes; ++i) {
+    const int32_t root = nodes[i];
+    if (seen[size_t(root)]) continue;
+    seen[size_t(root)] = 1;
+    queue.push_back(root);
+    for (size_t q = queue.size() - 1; q < queue.size(); ++q)
+      for (int32_t k = a.start[size_t(queue[q])]; k < a.start[size_t(queue[q]) + 1]; ++k) {
+        const auto [n, e] = a.adjacent[size_t(k)];
+        if (!seen[size_t(n)]) {
+          seen[size_t(n)] = 1;
+          forest.push_back(e);
+          queue.push_back(n);
+        }
       }
-    }
+  }
   return forest;
 }
 
 std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
-  std::vector<int32_t> component;
-  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
   // Each node scans its neighbours once, starting at a random offset, so the walk turns
   // differently for each seed while the total work stays linear.
   std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
   std::vector<int32_t> forest, stack;
-  for (int32_t r : roots) {
+  for (int32_t i = 0; i < g.num_nodes; ++i) {
+    const int32_t r = nodes[i];
+    if (seen[size_t(r)]) continue;
     seen[size_t(r)] = 1;
     stack.assign(1, r);
     offset[size_t(r)] = int32_t(rng.below(uint32_t(std::max(1, a.start[size_t(r) + 1] - a.start[size_t(r)]))));
@@ -150,11 +138,21 @@ std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
 // The walk remembers only the last edge it left each node by, which erases loops.
 std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
-  std::vector<int32_t> component;
-  const std::vector<int32_t> roots = random_roots(g, a, rng, component);
+  // Each component needs a root before walks start, or a walk in it would never end;
+  // which node does not change the distribution of the tree. Components by union-find
+  // in edge order, which is cache-friendly.
+  const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> in_tree(size_t(g.num_nodes), 0);
+  {
+    UnionFind components(g.num_nodes);
+    for (const auto& [u, v] : g.edges) components.unite(u, v);
+    std::vector<uint8_t> rooted(size_t(g.num_nodes), 0);
+    for (int32_t i = 0; i < g.num_nodes; ++i) {
+      const int32_t c = components.find(nodes[i]);
+      if (!rooted[size_t(c)]) rooted[size_t(c)] = in_tree[size_t(nodes[i])] = 1;
+    }
+  }
   std::vector<int32_t> next_node(size_t(g.num_nodes), -1), next_edge(size_t(g.num_nodes), -1);
-  for (int32_t r : roots) in_tree[size_t(r)] = 1;
   std::vector<int32_t> forest;
   for (int32_t s = 0; s < g.num_nodes; ++s) {
     for (int32_t u = s; !in_tree[size_t(u)];) {
