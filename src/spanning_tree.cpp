@@ -57,13 +57,25 @@ Adjacency build_adjacency(const Graph& g) {
 }
 
 std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
-  std::vector<int32_t> order(g.edges.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = int32_t(i);
+  // Shuffling the edges themselves (not their ids) lets the loop below read them in
+  // order and ask for the union-find entries of edges a few steps ahead, so the cache
+  // misses of the random order overlap instead of queueing.
+  struct Edge {
+    int32_t u, v, id;
+  };
+  std::vector<Edge> order(g.edges.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = {g.edges[i][0], g.edges[i][1], int32_t(i)};
   for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(uint32_t(i))]);
   UnionFind sets(g.num_nodes);
   std::vector<int32_t> forest;
-  for (int32_t e : order)
-    if (sets.unite(g.edges[size_t(e)][0], g.edges[size_t(e)][1])) forest.push_back(e);
+  constexpr size_t ahead = 8;
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i + ahead < order.size()) {
+      sets.prefetch(order[i + ahead].u);
+      sets.prefetch(order[i + ahead].v);
+    }
+    if (sets.unite(order[i].u, order[i].v)) forest.push_back(order[i].id);
+  }
   return forest;
 }
 
