@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# `make bench`: per-stage times and peak memory of the pipeline, Meander side by side with
+# OpenMesh and tinyobjloader, and the end-to-end CLI run on a 10M-triangle binary PLY,
+# printed as markdown ready for docs/benchmarks.md. Builds nothing (`make bench` builds
+# first); generated meshes go to $BUILD/bench/meshes.
+#
+# Environment: BUILD (build folder, default build), RUNS (runs per stage timing, default 5),
+# CLI_RUNS (end-to-end runs, default 3), MEANDER_SHARED_MESHES (default ../shared/meshes).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${BUILD:-build}
+runs=${RUNS:-5}
+cli_runs=${CLI_RUNS:-3}
+shared=${MEANDER_SHARED_MESHES:-../shared/meshes}
+meander=$build/meander
+scratch=$build/bench/meshes
+for tool in "$meander" "$build/bench/meander_bench_stages" "$build/bench/meander_bench_peers"; do
+  [ -x "$tool" ] || { echo "run.sh: $tool is missing: run 'make bench' (or make build) first" >&2; exit 1; }
+done
+for mesh in bunny_closed.off stanford-bunny_original_holes.obj; do
+  [ -f "$shared/$mesh" ] || { echo "run.sh: $shared/$mesh is missing (set MEANDER_SHARED_MESHES)" >&2; exit 1; }
+done
+mkdir -p "$scratch"
+
+load() { cut -d' ' -f1 /proc/loadavg; }
+# The middle value of the numbers on stdin (mean of the two middle ones for an even count).
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+
+echo "## Machine"
+echo
+echo "- CPU: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores"
+echo "- memory: $(awk '/MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)"
+echo "- kernel: $(uname -sr)"
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
+echo "- compiler: $("$compiler" --version | head -n 1)"
+echo "- build type: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt")"
+echo "- load average at start: $(load)"
+if awk -v l="$(load)" 'BEGIN { exit !(l > 0.5) }'; then
+  echo "- **warning: load above 0.5, someone else is using the cores: re-run when the machine is quiet**"
+fi
+
+# Generated every time (a few seconds) so that they always match the current generator.
+echo
+echo "## Inputs"
+echo
+generate() { "$meander" generate "$@" 2>&1 | sed 's/^/- /'; }
+generate sphere --faces 1000000 -o "$scratch/sphere_1m.ply"
+generate sphere --faces 10000000 -o "$scratch/sphere_10m.ply"
+generate genus --genus 3 --faces 1000000 -o "$scratch/genus3_1m.ply"
+generate sphere --faces 1000000 -o "$scratch/sphere_1m.obj"
+generate sphere --faces 10000000 -o "$scratch/sphere_10m.obj"
+
+echo
+echo "## Stages (median of $runs runs in one process; peak RSS of that process)"
+for mesh in "$shared/bunny_closed.off" "$scratch/sphere_1m.ply" "$scratch/sphere_10m.ply" "$scratch/genus3_1m.ply"; do
+  echo
+  "$build/bench/meander_bench_stages" "$mesh" --runs "$runs" | tee "$scratch/stages_$(basename "$mesh").txt"
+done
+triangles_10m=$(sed -n 's/^sphere_10m.ply: \([0-9]*\) input triangles.*/\1/p' "$scratch/stages_sphere_10m.ply.txt")
+
+echo
+echo "## Peers (Google Benchmark, median of 5 repetitions, same run)"
+echo
+echo '```'
+# Interleaving the repetitions spreads any change in the machine's load over every benchmark.
+"$build/bench/meander_bench_peers" --benchmark_enable_random_interleaving=true "$shared/bunny_closed.off" "$shared/stanford-bunny_original_holes.obj" \
+  "$scratch/sphere_1m.ply" "$scratch/sphere_10m.ply" "$scratch/sphere_1m.obj" "$scratch/sphere_10m.obj" \
+  > "$scratch/peers.txt"
+sed '/^$/,$d' "$scratch/peers.txt"
+echo '```'
+sed -n '/^$/,$p' "$scratch/peers.txt"
+openmesh_ratio_10m=$(awk -F'|' '$2 ~ /^ sphere_10m.ply / { gsub(/ /, "", $8); print $8 }' "$scratch/peers.txt")
+
+# GNU time (Debian package `time`) gives the CLI's own peak RSS; without it, only the time.
+peak_kb=0
+measure=()
+[ -x /usr/bin/time ] && measure=(/usr/bin/time -f %M -o "$scratch/cli_rss_kb")
+curve=$scratch/curve_10m.ply
+for ((i = 0; i < cli_runs; ++i)); do
+  rm -f "$curve"
+  start=$(date +%s.%N)
+  "${measure[@]}" "$meander" curve "$scratch/sphere_10m.ply" -o "$curve"
+  end=$(date +%s.%N)
+  awk -v s="$start" -v e="$end" 'BEGIN { print e - s }' >> "$scratch/cli_seconds"
+  [ ${#measure[@]} -eq 0 ] || peak_kb=$(( $(cat "$scratch/cli_rss_kb") > peak_kb ? $(cat "$scratch/cli_rss_kb") : peak_kb ))
+done
+cli_seconds=$(tail -n "$cli_runs" "$scratch/cli_seconds" | median)
+rm -f "$curve" "$scratch/cli_seconds"
+
+echo
+echo "## End to end: \`meander curve sphere_10m.ply -o curve.ply\` (median of $cli_runs)"
+echo
+echo "| target | measured | met |"
+echo "|---|---:|---|"
+verdict() { awk -v a="$1" -v b="$2" 'BEGIN { print (a <= b ? "yes" : "no") }'; }
+printf '| 10M-triangle binary PLY to binary PLY curve <= 3 s | %.2f s | %s |\n' "$cli_seconds" "$(verdict "$cli_seconds" 3)"
+if [ -n "$openmesh_ratio_10m" ] && [ "$openmesh_ratio_10m" != - ]; then
+  echo "| read + connectivity >= 5x faster than OpenMesh (10M) | $openmesh_ratio_10m | $(verdict 5 "${openmesh_ratio_10m%x}") |"
+else
+  echo "| read + connectivity >= 5x faster than OpenMesh (10M) | did not run | - |"
+fi
+if [ "$peak_kb" -gt 0 ]; then
+  bytes=$(awk -v k="$peak_kb" -v t="$triangles_10m" 'BEGIN { printf "%.0f", k * 1024 / t }')
+  echo "| peak memory <= 150 bytes per input triangle (CLI, 10M) | $bytes B ($((peak_kb / 1024)) MiB) | $(verdict "$bytes" 150) |"
+else
+  echo "| peak memory <= 150 bytes per input triangle (CLI, 10M) | GNU time not installed | - |"
+fi
+echo
+echo "load average at end: $(load)"
