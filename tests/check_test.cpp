@@ -66,6 +66,35 @@ PolygonMesh moebius_band(int n) {
   return m;
 }
 
+// Two triangles touching at vertex 0 only.
+PolygonMesh bow_tie() {
+  PolygonMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  m.add_face({0, 1, 2});
+  m.add_face({0, 3, 4});
+  return m;
+}
+
+// Three triangles on the edge (0,1), like the pages of a book.
+PolygonMesh three_triangles_on_one_edge() {
+  PolygonMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  m.add_face({0, 1, 2});
+  m.add_face({1, 0, 3});
+  m.add_face({0, 1, 4});
+  return m;
+}
+
+// Two closed tetrahedra whose only common element is vertex 0.
+PolygonMesh two_tetrahedra_sharing_a_vertex() {
+  PolygonMesh m = tetrahedron();
+  m.positions.push_back({-1, 0, 0});
+  m.positions.push_back({0, -1, 0});
+  m.positions.push_back({0, 0, -1});
+  for (auto f : {std::array{0, 5, 4}, std::array{0, 4, 6}, std::array{0, 6, 5}, std::array{4, 5, 6}}) m.add_face(f);
+  return m;
+}
+
 PolygonMesh with_face_replaced(PolygonMesh m, int32_t f, std::initializer_list<int32_t> vertices) {
   PolygonMesh out;
   out.positions = m.positions;
@@ -135,9 +164,10 @@ int repair_count(const RepairResult& r, const std::string& start) {
   return 0;
 }
 
-std::string strict_error(const PolygonMesh& m) {
+// The message of repair's refusal in strict mode, or "(no error)".
+std::string strict_error(const PolygonMesh& m, std::string_view name = "x.obj") {
   try {
-    repair(m, "x.obj", {.strict = true});
+    repair(m, name, {.strict = true});
   } catch (const TopologyError& e) {
     return e.what();
   }
@@ -197,11 +227,7 @@ TEST(CheckInspect, AnnulusHasTwoBoundaryLoops) {
 // boundary edges by vertex alone would merge them into one. Edge-connected, the bow-tie
 // is two components (as repair leaves it).
 TEST(CheckInspect, BowTie) {
-  PolygonMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
-  m.add_face({0, 1, 2});
-  m.add_face({0, 3, 4});
-  const MeshReport r = inspect(m);
+  const MeshReport r = inspect(bow_tie());
   EXPECT_EQ(r.non_manifold_vertices, 1);
   EXPECT_EQ(r.non_manifold_edges, 0);
   EXPECT_EQ(r.boundary_edges, 6);
@@ -219,12 +245,7 @@ TEST(CheckInspect, BowTie) {
 // both of its ends are non-manifold vertices, each with three fans. The boundary has no
 // single way on at those ends: walking it passes from page to page, one loop.
 TEST(CheckInspect, ThreeTrianglesOnOneEdge) {
-  PolygonMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
-  m.add_face({0, 1, 2});
-  m.add_face({1, 0, 3});
-  m.add_face({0, 1, 4});
-  const MeshReport r = inspect(m);
+  const MeshReport r = inspect(three_triangles_on_one_edge());
   EXPECT_EQ(r.edges, 7);
   EXPECT_EQ(r.non_manifold_edges, 1);
   EXPECT_EQ(r.non_manifold_vertices, 2);
@@ -239,12 +260,7 @@ TEST(CheckInspect, ThreeTrianglesOnOneEdge) {
 // Two closed fans at one vertex: every edge there has two faces and every count per
 // vertex looks manifold; only following the fans shows the vertex is pinched.
 TEST(CheckInspect, TwoTetrahedraSharingAVertex) {
-  PolygonMesh m = tetrahedron();
-  m.positions.push_back({-1, 0, 0});
-  m.positions.push_back({0, -1, 0});
-  m.positions.push_back({0, 0, -1});
-  for (auto f : {std::array{0, 5, 4}, std::array{0, 4, 6}, std::array{0, 6, 5}, std::array{4, 5, 6}}) m.add_face(f);
-  const MeshReport r = inspect(m);
+  const MeshReport r = inspect(two_tetrahedra_sharing_a_vertex());
   EXPECT_EQ(r.non_manifold_vertices, 1);
   EXPECT_EQ(r.non_manifold_edges, 0);
   EXPECT_EQ(r.boundary_edges, 0);
@@ -378,10 +394,7 @@ TEST(CheckRepair, CleanMeshIsReturnedUnchanged) {
 }
 
 TEST(CheckRepair, BowTieVertexIsSplit) {
-  PolygonMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
-  m.add_face({0, 1, 2});
-  m.add_face({0, 3, 4});
+  const PolygonMesh m = bow_tie();
   EXPECT_EQ(strict_error(m), "x.obj: vertex 0 joins 2 separate fans of faces: mesh is not manifold");
   const RepairResult r = repair(m, "x.obj");
   EXPECT_EQ(r.repairs, std::vector<std::string>{"split 1 non-manifold vertex into 2 copies (vertex 0 had 2 fans)"});
@@ -394,11 +407,7 @@ TEST(CheckRepair, BowTieVertexIsSplit) {
 }
 
 TEST(CheckRepair, ThreeTrianglesOnOneEdgeAreCutApart) {
-  PolygonMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
-  m.add_face({0, 1, 2});
-  m.add_face({1, 0, 3});
-  m.add_face({0, 1, 4});
+  const PolygonMesh m = three_triangles_on_one_edge();
   EXPECT_EQ(strict_error(m), "x.obj: edge (0,1) is shared by 3 faces: mesh is not manifold");
   const RepairResult r = repair(m, "x.obj");
   EXPECT_EQ(r.repairs, (std::vector<std::string>{"cut 1 non-manifold edge (edge (0,1) was shared by 3 faces)",
@@ -412,12 +421,7 @@ TEST(CheckRepair, ThreeTrianglesOnOneEdgeAreCutApart) {
 }
 
 TEST(CheckRepair, TwoTetrahedraSharingAVertexSeparate) {
-  PolygonMesh m = tetrahedron();
-  m.positions.push_back({-1, 0, 0});
-  m.positions.push_back({0, -1, 0});
-  m.positions.push_back({0, 0, -1});
-  for (auto f : {std::array{0, 5, 4}, std::array{0, 4, 6}, std::array{0, 6, 5}, std::array{4, 5, 6}}) m.add_face(f);
-  const RepairResult r = repair(m, "x.obj");
+  const RepairResult r = repair(two_tetrahedra_sharing_a_vertex(), "x.obj");
   EXPECT_EQ(r.repairs, std::vector<std::string>{"split 1 non-manifold vertex into 2 copies (vertex 0 had 2 fans)"});
   expect_repaired(r.mesh);
   const MeshReport after = inspect(r.mesh);
@@ -727,14 +731,7 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, CheckRealMesh, ::testing::ValuesIn(kMeshe
 // Strict mode refuses the broken meshes with the first problem, named after the file.
 TEST(CheckRepairStrict, RealMeshesMessages) {
   MEANDER_REQUIRE_SHARED_MESHES();
-  const auto strict_message = [](const char* file) {
-    try {
-      repair(read_mesh(test::shared_meshes() / file), file, {.strict = true});
-    } catch (const TopologyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("(no error)");
-  };
+  const auto strict_message = [](const char* file) { return strict_error(read_mesh(test::shared_meshes() / file), file); };
   EXPECT_EQ(strict_message("bunny_closed.off"), "(no error)");
   EXPECT_EQ(strict_message("moebius.obj"), "(no error)");
   EXPECT_EQ(strict_message("hourglass_ico.obj"),

@@ -31,11 +31,11 @@ struct ComponentReport {
 };
 
 // Everything `meander info` prints. Counts are of the mesh as given (before repair).
-// Element counts (faces_by_size, degenerate, zero-area, out-of-range, unreferenced,
-// non-finite) look at every face and vertex. The topology (edges and everything after them
-// but zero_area_faces) is that of the faces as repair step 2 leaves them: faces with an
-// index out of range left out, repeated consecutive vertices collapsed, faces left with
-// fewer than 3 distinct vertices left out.
+// Element counts (faces by size, degenerate, zero-area, unreferenced, non-finite,
+// out-of-range) look at every face and vertex. The topology (edges, boundary, non-manifold
+// elements, duplicates, orientation, components) is that of the faces as repair step 2
+// leaves them: faces with an index out of range left out, repeated consecutive vertices
+// collapsed, faces left with fewer than 3 distinct vertices left out.
 struct MeshReport {
   int32_t vertices = 0;
   int32_t faces = 0;
@@ -43,8 +43,10 @@ struct MeshReport {
   int32_t edges = 0;
   int32_t boundary_edges = 0;
   // Closed chains of boundary edges. At a vertex the two boundary edges that end the same
-  // fan of faces are chained, so loops touching at a vertex stay apart; exact on manifold
-  // meshes (where a fan ends at a non-manifold edge a chain can stop short).
+  // fan of faces are chained, so loops touching at a vertex stay apart. Where fans end at
+  // a non-manifold edge instead, the boundary edges ending them at that vertex are chained
+  // together (a walk along the boundary passes from one to the next). Exact on manifold
+  // meshes; on others it is one reasonable count among several.
   int32_t boundary_loops = 0;
   int32_t non_manifold_edges = 0;    // shared by more than two faces
   // Its faces form more than one fan (faces joined across the manifold edges through it);
