@@ -1,0 +1,112 @@
+#include "io/atomic_file.h"
+
+#include "meander/error.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace meander::io {
+namespace {
+
+constexpr size_t buffer_size = size_t(1) << 20;
+
+// mkstemp makes a file only its owner may read; the target should get what any new
+// file gets, 0666 minus the umask. Reading the umask means setting it (a race with
+// other threads creating files), so it is read from /proc instead.
+mode_t new_file_mode() {
+  unsigned mask = 022;
+  if (FILE* status = std::fopen("/proc/self/status", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, status))
+      if (std::sscanf(line, "Umask: %o", &mask) == 1) break;
+    std::fclose(status);
+  }
+  return mode_t(0666 & ~mask);
+}
+
+} // namespace
+
+AtomicFile::AtomicFile(const std::filesystem::path& target) : target_(target) {
+  std::string temp_name = target.filename().string();
+  temp_name.insert(temp_name.begin(), '.');
+  temp_name += ".tmp.XXXXXX";
+  temp_ = (target.parent_path() / temp_name).string();
+  fd_ = ::mkstemp(temp_.data());
+  if (fd_ < 0) fail("cannot create file", errno);
+  // Only cosmetic: a file left owner-only is still a correct output.
+  ::fchmod(fd_, new_file_mode());
+  buffer_.resize(buffer_size);
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_) ::unlink(temp_.c_str());
+}
+
+void AtomicFile::real(float value) {
+  constexpr size_t longest = 16; // "-1.17549435e-38"
+  char* first = room(longest);
+  used_ = size_t(std::to_chars(first, first + longest, value).ptr - buffer_.data());
+}
+
+void AtomicFile::fixed(double value, int decimals) {
+  constexpr size_t longest = 400; // 309 integer digits of the largest double, the sign, decimals
+  char* first = room(longest);
+  used_ = size_t(std::to_chars(first, first + longest, value, std::chars_format::fixed, decimals).ptr - buffer_.data());
+}
+
+void AtomicFile::integer(int64_t value) {
+  constexpr size_t longest = 20;
+  char* first = room(longest);
+  used_ = size_t(std::to_chars(first, first + longest, value).ptr - buffer_.data());
+}
+
+void AtomicFile::bytes(const void* data, size_t size) {
+  if (size == 0) return; // data may be null then, which memcpy does not allow
+  if (buffer_.size() - used_ < size) {
+    flush();
+    if (size >= buffer_.size()) {
+      write_all(static_cast<const char*>(data), size);
+      return;
+    }
+  }
+  std::memcpy(buffer_.data() + used_, data, size);
+  used_ += size;
+}
+
+void AtomicFile::flush() {
+  write_all(buffer_.data(), used_);
+  used_ = 0;
+}
+
+void AtomicFile::write_all(const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd_, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      fail("cannot write", errno);
+    }
+    data += written;
+    size -= size_t(written);
+  }
+}
+
+void AtomicFile::commit() {
+  flush();
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0) fail("cannot write", errno);
+  if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot write", errno);
+  committed_ = true;
+}
+
+void AtomicFile::fail(std::string_view what, int error) const {
+  throw IOError(target_.string() + ": " + std::string(what) + ": " + std::strerror(error));
+}
+
+} // namespace meander::io

@@ -1,0 +1,63 @@
+// A file that appears whole or not at all. Bytes go through a large buffer into a
+// temporary file made with mkstemp in the target's folder (same file system, so the
+// final rename is atomic); commit() renames it over the target. If commit() is never
+// reached (an exception), the destructor removes the temporary file and a pre-existing
+// target is left untouched.
+#pragma once
+
+#include "io/binary.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace meander::io {
+
+class AtomicFile {
+public:
+  // Throws IOError("path: cannot create file: <reason>") if the folder refuses it.
+  explicit AtomicFile(const std::filesystem::path& target);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void text(std::string_view s) { bytes(s.data(), s.size()); }
+  void put(char c) {
+    *room(1) = c;
+    ++used_;
+  }
+  // The shortest decimal that reads back as the same float (std::to_chars).
+  void real(float value);
+  // A fixed number of decimals, for coordinates where a pixel fraction is enough (SVG).
+  void fixed(double value, int decimals);
+  void integer(int64_t value);
+  void bytes(const void* data, size_t size);
+  template <class T> void little_endian(T value) {
+    store_little_endian(room(sizeof(T)), value);
+    used_ += sizeof(T);
+  }
+
+  // Writes out the buffer, closes the file and renames it over the target.
+  void commit();
+
+private:
+  // At least n (<= the buffer's size) free bytes at the end of the buffer.
+  char* room(size_t n) {
+    if (buffer_.size() - used_ < n) flush();
+    return buffer_.data() + used_;
+  }
+  void flush();
+  void write_all(const char* data, size_t size);
+  [[noreturn]] void fail(std::string_view what, int error) const;
+
+  std::filesystem::path target_;
+  std::string temp_;
+  int fd_ = -1;
+  bool committed_ = false;
+  std::vector<char> buffer_;
+  size_t used_ = 0;
+};
+
+} // namespace meander::io

@@ -1,0 +1,62 @@
+// The readers and writers of each mesh format, behind read_mesh and write_mesh
+// (mesh_io.cpp), which pick one by the file's extension. Readers take the whole file
+// in memory; `name` stands for the file in messages. See meander/io.h for the contract.
+#pragma once
+
+#include "io/atomic_file.h"
+#include "meander/io.h"
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace meander::io {
+
+// The extension of `path` in lower case, with its dot: ".obj".
+std::string lowercase_extension(const std::filesystem::path& path);
+
+PolygonMesh read_obj(std::string_view bytes, std::string_view name);
+PolygonMesh read_ply(std::string_view bytes, std::string_view name);
+PolygonMesh read_stl(std::string_view bytes, std::string_view name);
+PolygonMesh read_off(std::string_view bytes, std::string_view name);
+
+void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
+void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
+void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
+void write_off(const PolygonMesh& mesh, AtomicFile& out);
+
+// "x y z\n": a point as OBJ, OFF and ascii PLY write it.
+inline void write_point_line(AtomicFile& out, Vec3 p) {
+  out.real(p.x);
+  out.put(' ');
+  out.real(p.y);
+  out.put(' ');
+  out.real(p.z);
+  out.put('\n');
+}
+
+// Points as little-endian float x, y, z (binary PLY).
+inline void write_binary_points(AtomicFile& out, std::span<const Vec3> points) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(float));
+  if constexpr (host_is_little_endian) {
+    out.bytes(points.data(), points.size_bytes());
+  } else {
+    for (const Vec3& p : points) {
+      out.little_endian(p.x);
+      out.little_endian(p.y);
+      out.little_endian(p.z);
+    }
+  }
+}
+
+// "n i0 ... i(n-1)\n": a face as OFF and ascii PLY write it.
+inline void write_counted_indices(AtomicFile& out, std::span<const int32_t> face) {
+  out.integer(int64_t(face.size()));
+  for (int32_t v : face) {
+    out.put(' ');
+    out.integer(v);
+  }
+  out.put('\n');
+}
+
+} // namespace meander::io

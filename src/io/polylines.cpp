@@ -1,0 +1,121 @@
+#include "io/formats.h"
+#include "meander/error.h"
+
+#include <algorithm>
+
+namespace meander {
+namespace {
+
+void write_obj_polylines(const Polylines& curves, io::AtomicFile& out) {
+  for (const Vec3& p : curves.points) {
+    out.text("v ");
+    io::write_point_line(out, p);
+  }
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const int32_t first = curves.start[k], end = curves.start[k + 1];
+    if (first == end) continue; // an empty polyline has no element to write
+    out.put('l');
+    for (int32_t i = first; i < end; ++i) {
+      out.put(' ');
+      out.integer(int64_t(i) + 1);
+    }
+    out.put(' ');
+    out.integer(int64_t(first) + 1);
+    out.put('\n');
+  }
+}
+
+void write_ply_polylines(const Polylines& curves, io::AtomicFile& out) {
+  // A closed polyline of n >= 2 points has n edges; a single point has none.
+  int64_t edges = 0;
+  for (int32_t k = 0; k < curves.size(); ++k)
+    if (const int32_t n = curves.start[k + 1] - curves.start[k]; n >= 2) edges += n;
+  out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
+  out.integer(int64_t(curves.points.size()));
+  out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
+  out.integer(edges);
+  out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
+  io::write_binary_points(out, curves.points);
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const int32_t first = curves.start[k], end = curves.start[k + 1];
+    if (end - first < 2) continue;
+    for (int32_t i = first; i < end; ++i) {
+      out.little_endian(i);
+      out.little_endian(i + 1 == end ? first : i + 1);
+    }
+  }
+}
+
+void write_json_polylines(const Polylines& curves, io::AtomicFile& out) {
+  out.text("{\"polylines\": [");
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    out.text(k == 0 ? "\n  " : ",\n  ");
+    out.text("{\"closed\": true, \"points\": [");
+    const std::span<const Vec3> points = curves.polyline(k);
+    for (size_t i = 0; i < points.size(); ++i) {
+      out.text(i == 0 ? "[" : ", [");
+      out.real(points[i].x);
+      out.put(',');
+      out.real(points[i].y);
+      out.put(',');
+      out.real(points[i].z);
+      out.put(']');
+    }
+    out.text("]}");
+  }
+  out.text(curves.size() > 0 ? "\n]}\n" : "]}\n");
+}
+
+// Looking down the -z axis: x to the right, y up (SVG's y grows downwards), the
+// drawing scaled to fit a page of 1000 units at the most on its longer side.
+void write_svg_polylines(const Polylines& curves, io::AtomicFile& out) {
+  constexpr double page = 1000, margin = 20;
+  const Box3 box = bounding_box(curves.points);
+  const double width = box.empty() ? 0 : double(box.max.x) - box.min.x;
+  const double height = box.empty() ? 0 : double(box.max.y) - box.min.y;
+  const double extent = std::max(width, height);
+  const double scale = extent > 0 ? (page - 2 * margin) / extent : 1;
+  const double page_width = width * scale + 2 * margin, page_height = height * scale + 2 * margin;
+  // Two decimals: a hundredth of a unit is far below what a page or screen shows.
+  constexpr int decimals = 2;
+  out.text("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"");
+  out.fixed(page_width, decimals);
+  out.text("\" height=\"");
+  out.fixed(page_height, decimals);
+  out.text("\" viewBox=\"0 0 ");
+  out.fixed(page_width, decimals);
+  out.put(' ');
+  out.fixed(page_height, decimals);
+  out.text("\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"1\" stroke-linejoin=\"round\">\n");
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const std::span<const Vec3> points = curves.polyline(k);
+    if (points.empty()) continue;
+    out.text("<path d=\"");
+    for (size_t i = 0; i < points.size(); ++i) {
+      out.text(i == 0 ? "M" : " L");
+      out.fixed(margin + (double(points[i].x) - box.min.x) * scale, decimals);
+      out.put(' ');
+      out.fixed(margin + (double(box.max.y) - points[i].y) * scale, decimals);
+    }
+    out.text(" Z\"/>\n");
+  }
+  out.text("</g>\n</svg>\n");
+}
+
+} // namespace
+
+void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
+  const std::string extension = io::lowercase_extension(path);
+  void (*write)(const Polylines&, io::AtomicFile&) = extension == ".obj"    ? write_obj_polylines
+                                                     : extension == ".ply"  ? write_ply_polylines
+                                                     : extension == ".json" ? write_json_polylines
+                                                     : extension == ".svg"  ? write_svg_polylines
+                                                                            : nullptr;
+  if (!write)
+    throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply, .json or .svg)");
+  io::AtomicFile out(path);
+  write(curves, out);
+  out.commit();
+}
+
+} // namespace meander

@@ -1,0 +1,208 @@
+#include "io/binary.h"
+#include "io/formats.h"
+#include "io/reader_support.h"
+#include "io/text_cursor.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
+
+namespace meander::io {
+namespace {
+
+// Merges the corners of a triangle soup into shared vertices. Positions that compare
+// equal as floats are one vertex (so -0 and +0 are one), numbered in order of first
+// appearance; an open-addressing table of vertex indices keeps it linear.
+class Welder {
+public:
+  Welder(std::vector<Vec3>& positions, size_t expected_vertices, std::string_view name)
+      : positions_(positions), name_(name) {
+    rebuild(std::bit_ceil(std::max<size_t>(16, 2 * expected_vertices)));
+  }
+
+  int32_t add(Vec3 p) {
+    const Key key = key_of(p);
+    size_t slot = hash(key) & mask_;
+    for (; slots_[slot] >= 0; slot = (slot + 1) & mask_)
+      if (key_of(positions_[size_t(slots_[slot])]) == key) return slots_[slot];
+    if (int64_t(positions_.size()) == max_count) fail_input(name_, too_many(uint64_t(max_count) + 1, "vertices"));
+    const int32_t index = int32_t(positions_.size());
+    positions_.push_back(p);
+    slots_[slot] = index;
+    // At most half full, so probe runs stay short.
+    if (2 * positions_.size() > slots_.size()) rebuild(2 * slots_.size());
+    return index;
+  }
+
+private:
+  using Key = std::array<uint32_t, 3>;
+  // Adding +0 turns -0 into +0 and leaves every other value as it is.
+  static Key key_of(Vec3 p) {
+    return {std::bit_cast<uint32_t>(p.x + 0.0f), std::bit_cast<uint32_t>(p.y + 0.0f),
+            std::bit_cast<uint32_t>(p.z + 0.0f)};
+  }
+  static size_t hash(const Key& k) {
+    uint64_t h = k[0] * 0x9E3779B97F4A7C15ull ^ k[1] * 0xC2B2AE3D27D4EB4Full ^ k[2] * 0x165667B19E3779F9ull;
+    h ^= h >> 32;
+    h *= 0xD6E8FEB86659FD93ull;
+    return size_t(h ^ (h >> 32));
+  }
+  void rebuild(size_t size) {
+    slots_.assign(size, -1);
+    mask_ = size - 1;
+    for (size_t i = 0; i < positions_.size(); ++i) {
+      size_t slot = hash(key_of(positions_[i])) & mask_;
+      while (slots_[slot] >= 0) slot = (slot + 1) & mask_;
+      slots_[slot] = int32_t(i);
+    }
+  }
+
+  std::vector<Vec3>& positions_;
+  std::string_view name_;
+  std::vector<int32_t> slots_;
+  size_t mask_ = 0;
+};
+
+// An ascii STL starts with "solid" and is text. A binary one may start with "solid" as
+// well (many exporters put it in the header), but its triangle count and floats bring
+// control bytes within the first kilobyte.
+bool is_ascii_stl(std::string_view bytes) {
+  const size_t start = bytes.find_first_not_of(" \t\r\n");
+  if (start == std::string_view::npos || bytes.substr(start, 5) != "solid") return false;
+  const std::string_view head = bytes.substr(0, 1024);
+  return std::all_of(head.begin(), head.end(), [](unsigned char c) { return c >= 0x20 || (c >= '\t' && c <= '\r'); });
+}
+
+PolygonMesh read_binary_stl(std::string_view bytes, size_t count, std::string_view name) {
+  if (const std::string message = too_many(3 * count, "face corners"); !message.empty()) fail_input(name, message);
+  PolygonMesh mesh;
+  mesh.face_start.resize(count + 1);
+  mesh.face_vertices.resize(3 * count);
+  // A closed triangle mesh has about half as many vertices as triangles.
+  Welder welder(mesh.positions, count / 2, name);
+  for (size_t t = 0; t < count; ++t) {
+    const char* corner = bytes.data() + 84 + 50 * t + 12; // past the normal
+    for (size_t k = 0; k < 3; ++k, corner += 12) {
+      const Vec3 p{load_little_endian<float>(corner), load_little_endian<float>(corner + 4),
+                   load_little_endian<float>(corner + 8)};
+      if (!is_finite(p)) fail_input(name, "face " + std::to_string(t) + ": " + non_finite_coordinate(p));
+      mesh.face_vertices[3 * t + k] = welder.add(p);
+    }
+    mesh.face_start[t + 1] = int32_t(3 * (t + 1));
+  }
+  return mesh;
+}
+
+// solid, then facets of "facet normal n n n / outer loop / vertex x y z ... / endloop /
+// endfacet", then endsolid; several solids may follow one another. Keywords are
+// matched ignoring case, and a facet may hold more than three vertices.
+PolygonMesh read_ascii_stl(std::string_view bytes, std::string_view name) {
+  TextCursor in(bytes, name);
+  PolygonMesh mesh;
+  // An ascii facet takes about 250 bytes, and a closed mesh has half as many vertices as facets.
+  Welder welder(mesh.positions, bytes.size() / 500, name);
+  in.expect("solid");
+  in.next_line();
+  while (true) {
+    if (in.accept("endsolid")) {
+      in.next_line();
+      in.skip_space();
+      if (in.at_end()) break;
+      in.expect("solid");
+      in.next_line();
+      continue;
+    }
+    if (in.at_end()) in.fail("file ends before 'endsolid'");
+    in.expect("facet");
+    in.expect("normal");
+    for (int k = 0; k < 3; ++k) in.skip_number("normal coordinate");
+    in.expect("outer");
+    in.expect("loop");
+    const size_t first = mesh.face_vertices.size();
+    while (!in.accept("endloop")) {
+      in.expect("vertex");
+      const float x = in.real("vertex coordinate");
+      const float y = in.real("vertex coordinate");
+      const float z = in.real("vertex coordinate");
+      mesh.face_vertices.push_back(welder.add({x, y, z}));
+    }
+    if (const size_t size = mesh.face_vertices.size() - first; size < 3) in.fail(too_few_vertices(int64_t(size)));
+    in.expect("endfacet");
+    mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
+  }
+  return mesh;
+}
+
+// Fans each face from its first vertex and calls f(a, b, c) for every triangle.
+template <class F> void for_each_triangle(const PolygonMesh& mesh, F f) {
+  for (int32_t face = 0; face < mesh.num_faces(); ++face) {
+    const std::span<const int32_t> v = mesh.face(face);
+    const Vec3 a = mesh.positions[size_t(v[0])];
+    for (size_t k = 1; k + 1 < v.size(); ++k) f(a, mesh.positions[size_t(v[k])], mesh.positions[size_t(v[k + 1])]);
+  }
+}
+
+Vec3 unit_normal(Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 n = cross(b - a, c - a);
+  const double length = norm(n);
+  return length > 0 ? n * float(1 / length) : Vec3{};
+}
+
+} // namespace
+
+PolygonMesh read_stl(std::string_view bytes, std::string_view name) {
+  const uint64_t count = bytes.size() >= 84 ? load_little_endian<uint32_t>(bytes.data() + 80) : 0;
+  PolygonMesh mesh;
+  if (bytes.size() >= 84 && bytes.size() - 84 == 50 * count) {
+    mesh = read_binary_stl(bytes, size_t(count), name);
+  } else if (is_ascii_stl(bytes)) {
+    mesh = read_ascii_stl(bytes, name);
+  } else if (bytes.size() < 84) {
+    fail_input(name, "not an STL file (no 'solid' at the start, and too short for a binary STL)");
+  } else if (const uint64_t held = (bytes.size() - 84) / 50; held != count) {
+    fail_input(name,
+               "binary STL claims " + std::to_string(count) + " triangles but the file holds " + std::to_string(held));
+  } else {
+    fail_input(name, "binary STL of " + std::to_string(count) + " triangles has " +
+                         std::to_string(bytes.size() - 84 - 50 * count) + " extra bytes at the end");
+  }
+  require_faces(mesh, name);
+  return mesh;
+}
+
+void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
+  if (options.ascii) {
+    out.text("solid meander\n");
+    for_each_triangle(mesh, [&](Vec3 a, Vec3 b, Vec3 c) {
+      out.text("facet normal ");
+      write_point_line(out, unit_normal(a, b, c));
+      out.text("outer loop\n");
+      for (Vec3 p : {a, b, c}) {
+        out.text("vertex ");
+        write_point_line(out, p);
+      }
+      out.text("endloop\nendfacet\n");
+    });
+    out.text("endsolid meander\n");
+    return;
+  }
+  // Not "solid...": readers that trust the first word would take the file for ascii.
+  char header[80] = "binary STL written by Meander";
+  out.bytes(header, sizeof header);
+  uint32_t triangles = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += uint32_t(std::max(mesh.face_size(f) - 2, 0));
+  out.little_endian(triangles);
+  for_each_triangle(mesh, [&](Vec3 a, Vec3 b, Vec3 c) {
+    char record[50] = {}; // the 2-byte attribute count stays 0
+    char* at = record;
+    for (Vec3 p : {unit_normal(a, b, c), a, b, c})
+      for (float v : {p.x, p.y, p.z}) {
+        store_little_endian(at, v);
+        at += 4;
+      }
+    out.bytes(record, sizeof record);
+  });
+}
+
+} // namespace meander::io

@@ -1,0 +1,129 @@
+#include "io/text_cursor.h"
+
+#include "io/reader_support.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace meander::io {
+
+TextCursor::TextCursor(std::string_view text, std::string_view name, int64_t first_line)
+    : begin_(text.data()), p_(text.data()), end_(text.data() + text.size()), line_(first_line), name_(name) {
+  if (text.starts_with("\xEF\xBB\xBF")) p_ += 3;
+}
+
+void TextCursor::skip_space() {
+  while (p_ != end_) {
+    if (is_blank(*p_)) {
+      ++p_;
+    } else if (*p_ == '\n') {
+      ++p_;
+      ++line_;
+    } else if (*p_ == '#') {
+      const void* newline = std::memchr(p_, '\n', size_t(end_ - p_));
+      p_ = newline ? static_cast<const char*>(newline) : end_;
+    } else {
+      return;
+    }
+  }
+}
+
+void TextCursor::next_line() {
+  const void* newline = std::memchr(p_, '\n', size_t(end_ - p_));
+  if (!newline) {
+    p_ = end_;
+    return;
+  }
+  p_ = static_cast<const char*>(newline) + 1;
+  ++line_;
+}
+
+std::string_view TextCursor::word() {
+  skip_blanks();
+  const std::string_view found = word_here();
+  p_ += found.size();
+  return found;
+}
+
+bool TextCursor::accept(std::string_view keyword) {
+  skip_space();
+  const std::string_view found = word_here();
+  const bool same = found.size() == keyword.size() &&
+                    std::equal(found.begin(), found.end(), keyword.begin(),
+                               [](unsigned char a, unsigned char b) { return std::tolower(a) == std::tolower(b); });
+  if (same) p_ += found.size();
+  return same;
+}
+
+void TextCursor::expect(std::string_view keyword) {
+  if (accept(keyword)) return;
+  const std::string expected = "expected '" + std::string(keyword) + "'";
+  fail(at_end() ? expected + " but the file ends" : expected + ", found " + quoted(word_here()));
+}
+
+std::string_view TextCursor::word_here() const {
+  const char* q = p_;
+  while (q != end_ && !is_blank(*q) && *q != '\n') ++q;
+  return {p_, size_t(q - p_)};
+}
+
+void TextCursor::fail_missing(std::string_view what) const { fail("missing " + std::string(what)); }
+
+void TextCursor::fail_bad(std::string_view what) const { fail("bad " + std::string(what) + " " + quoted(word_here())); }
+
+float TextCursor::real(std::string_view what) {
+  const char* first = number_start(what);
+  float value;
+  const auto [last, ec] = std::from_chars(first, end_, value);
+  if (ec == std::errc() && at_word_end(last) && std::isfinite(value)) {
+    p_ = last;
+    return value;
+  }
+  if (ec == std::errc::invalid_argument || !at_word_end(last)) fail_bad(what);
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars reports underflow and overflow alike; underflow is a valid zero.
+    double wide = 0;
+    if (std::from_chars(first, end_, wide).ec == std::errc() && std::fabs(wide) < 1) {
+      p_ = last;
+      return float(wide);
+    }
+  }
+  fail("non-finite " + std::string(what) + " " + quoted(word_here()));
+}
+
+int64_t TextCursor::integer(std::string_view what, char separator) {
+  // By hand rather than with from_chars: indices are most of an OBJ or OFF file, and
+  // this loop reads them about twice as fast. Up to 18 digits cannot overflow; longer
+  // numbers are refused (no mesh has that many vertices).
+  const char* q = number_start(what);
+  const bool negative = *q == '-';
+  q += negative;
+  const char* digits = q;
+  int64_t value = 0;
+  for (; q != end_ && unsigned(*q - '0') < 10 && q - digits < 18; ++q) value = value * 10 + (*q - '0');
+  if (q == digits || (q != end_ && unsigned(*q - '0') < 10)) fail_bad(what);
+  if (q != end_ && *q == separator)
+    while (!at_word_end(q)) ++q;
+  if (!at_word_end(q)) fail_bad(what);
+  p_ = q;
+  return negative ? -value : value;
+}
+
+void TextCursor::skip_number(std::string_view what) {
+  const char* first = number_start(what);
+  double value;
+  const auto [last, ec] = std::from_chars(first, end_, value);
+  if (ec == std::errc::invalid_argument || !at_word_end(last)) fail_bad(what);
+  p_ = last;
+}
+
+void TextCursor::fail(std::string_view message) const {
+  const bool after_last_line = p_ == end_ && p_ != begin_ && p_[-1] == '\n';
+  fail_at_line(name_, line_ - after_last_line, message);
+}
+
+} // namespace meander::io
