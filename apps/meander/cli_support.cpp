@@ -43,6 +43,7 @@ PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, Stag
   log.lap("read");
   RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict});
   for (const std::string& line : repaired.repairs) std::fprintf(stderr, "%s: repaired: %s\n", path.string().c_str(), line.c_str());
+  for (const std::string& line : repaired.notices) std::fprintf(stderr, "%s: note: %s\n", path.string().c_str(), line.c_str());
   log.lap("check");
   return std::move(repaired.mesh);
 }

@@ -16,8 +16,8 @@ namespace meander::cli {
 void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
                          std::string_view option);
 
-// Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ..."),
-// or refuses it under strict. Adds the read and check times to the log when verbose.
+// Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
+// each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.
 class StageLog;
 PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log);
 
