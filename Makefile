@@ -6,7 +6,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
-                   libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev
+                   libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev
 
 .PHONY: deps build demo test bench clean
 

@@ -3,6 +3,8 @@
 #include "meander/error.h"
 
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <string>
 
 namespace meander {
@@ -73,26 +75,30 @@ Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& o
   out.points.resize(size_t(start.back()) * size_t(k));
   out.start.resize(start.size());
   for (size_t i = 0; i < start.size(); ++i) out.start[i] = start[i] * k;
+  // Segments are independent given their four control points, so blocks of a curve are
+  // sampled in parallel, each starting its own window.
   for (size_t c = 0; c + 1 < start.size(); ++c) {
     const int32_t first = start[c], n = start[c + 1] - first;
-    Vec3* dst = out.points.data() + size_t(out.start[c]);
-    if (n == 0) continue;
-    // A window of four control points slides along the closed polygon.
-    Vec3 p0 = point(first + n - 1), p1 = point(first), p2 = point(first + (1 % n)), p3 = point(first + (2 % n));
-    for (int32_t i = 0; i < n; ++i) {
-      if (options.smoothing == Smoothing::none) {
-        *dst++ = p1;
-      } else {
-        for (int j = 0; j < k; ++j) {
-          const float u = float(j) / float(k);
-          *dst++ = options.smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+    Vec3* curve = out.points.data() + size_t(out.start[c]);
+    tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<int32_t>& block) {
+      auto at = [&](int32_t i) { return point(first + i % n); };
+      Vec3 p0 = at(block.begin() + n - 1), p1 = at(block.begin()), p2 = at(block.begin() + 1), p3 = at(block.begin() + 2);
+      Vec3* dst = curve + size_t(block.begin()) * size_t(k);
+      for (int32_t i = block.begin(); i < block.end(); ++i) {
+        if (options.smoothing == Smoothing::none) {
+          *dst++ = p1;
+        } else {
+          for (int j = 0; j < k; ++j) {
+            const float u = float(j) / float(k);
+            *dst++ = options.smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+          }
         }
+        p0 = p1;
+        p1 = p2;
+        p2 = p3;
+        p3 = at(i + 3);
       }
-      p0 = p1;
-      p1 = p2;
-      p2 = p3;
-      p3 = point(first + (i + 3) % n);
-    }
+    });
   }
   return out;
 }
