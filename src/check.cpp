@@ -586,7 +586,7 @@ RepairResult repair(const PolygonMesh& mesh, std::string_view name, const Repair
 RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
   const std::string prefix = std::string(name) + ": ";
   const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
-  RepairResult result{std::move(mesh), {}, {}};
+  RepairResult result{std::move(mesh), {}, {}, {}};
   PolygonMesh& m = result.mesh;
   std::vector<std::string>& repairs = result.repairs;
 
@@ -670,6 +670,7 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
 
   // 5. Orientation. A consistently oriented mesh (the usual case) has no misoriented edge
   // and needs no search.
+  bool reoriented = false;
   if (edges.misoriented > 0) {
     const Sheets sheets = find_sheets(m, c);
     if (options.strict)
@@ -693,6 +694,7 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
     }
     const auto non_orientable = std::count(sheets.orientable.begin(), sheets.orientable.end(), 0);
     const auto first_non_orientable = std::find(sheets.orientable.begin(), sheets.orientable.end(), 0) - sheets.orientable.begin();
+    reoriented = flipped > 0;
     if (flipped > 0)
       repairs.push_back("re-oriented " + plural(flipped, "face", "faces") +
                         " to agree with their neighbours (first: face " + std::to_string(input_face(first_flipped)) + ")");
@@ -719,9 +721,14 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
       }
     m.positions.resize(size_t(kept));
     for (int32_t& v : m.face_vertices) v = index[size_t(v)];
+    // The renumbering keeps the vertex order, so edges keep their (lo, hi) order too.
+    for (auto& ends : c.edge_vertices) ends = {index[size_t(ends[0])], index[size_t(ends[1])]};
     repairs.push_back("dropped " + plural(unused, "unreferenced vertex", "unreferenced vertices") + " (first: vertex " +
                       std::to_string(first) + ")");
   }
+  // Reversed faces renumber their halfedges; otherwise the last connectivity built still
+  // describes the result, and the pipeline need not build it again.
+  if (!reoriented) result.connectivity = std::move(c);
   return result;
 }
 

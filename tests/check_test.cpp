@@ -393,6 +393,36 @@ TEST(CheckRepair, CleanMeshIsReturnedUnchanged) {
   EXPECT_EQ(r.mesh.face_vertices.data(), data);
 }
 
+// The connectivity repair hands on must be exactly the one the pipeline would build,
+// also after dropping duplicate faces, splitting fans and renumbering vertices; after
+// re-orienting faces it is left empty (their halfedges changed).
+TEST(CheckRepair, HandsOnTheConnectivityOfItsResult) {
+  auto expect_same = [](const RepairResult& r) {
+    const Connectivity fresh = build_connectivity(r.mesh);
+    EXPECT_EQ(r.connectivity.halfedge_edge, fresh.halfedge_edge);
+    EXPECT_EQ(r.connectivity.halfedge_face, fresh.halfedge_face);
+    EXPECT_EQ(r.connectivity.edge_vertices, fresh.edge_vertices);
+    EXPECT_EQ(r.connectivity.edge_start, fresh.edge_start);
+    EXPECT_EQ(r.connectivity.edge_halfedges, fresh.edge_halfedges);
+  };
+  expect_same(repair(cube(), "x.obj"));
+  PolygonMesh unused = strip(3);
+  unused.positions.insert(unused.positions.begin(), Vec3{9, 9, 9}); // vertex 0 unused
+  for (int32_t& v : unused.face_vertices) ++v;
+  const RepairResult dropped = repair(unused, "x.obj");
+  ASSERT_FALSE(dropped.repairs.empty());
+  expect_same(dropped);
+  PolygonMesh duplicated = tetrahedron();
+  duplicated.add_face({1, 2, 3});
+  expect_same(repair(duplicated, "x.obj"));
+  expect_same(repair(bow_tie(), "x.obj"));
+  PolygonMesh flipped = strip(3);
+  std::reverse(flipped.face_vertices.begin(), flipped.face_vertices.begin() + 3);
+  const RepairResult reoriented = repair(flipped, "x.obj");
+  ASSERT_FALSE(reoriented.repairs.empty());
+  EXPECT_TRUE(reoriented.connectivity.halfedge_edge.empty());
+}
+
 TEST(CheckRepair, BowTieVertexIsSplit) {
   const PolygonMesh m = bow_tie();
   EXPECT_EQ(strict_error(m), "x.obj: vertex 0 joins 2 separate fans of faces: mesh is not manifold");

@@ -38,14 +38,14 @@ void StageLog::note(const std::string& line) {
   if (verbose_) std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log) {
+RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log) {
   PolygonMesh mesh = read_mesh(path);
   log.lap("read");
   RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict});
   for (const std::string& line : repaired.repairs) std::fprintf(stderr, "%s: repaired: %s\n", path.string().c_str(), line.c_str());
   for (const std::string& line : repaired.notices) std::fprintf(stderr, "%s: note: %s\n", path.string().c_str(), line.c_str());
   log.lap("check");
-  return std::move(repaired.mesh);
+  return repaired;
 }
 
 } // namespace meander::cli

@@ -1,7 +1,7 @@
 // Small helpers the subcommands share.
 #pragma once
 
-#include "meander/mesh.h"
+#include "meander/check.h"
 
 #include <chrono>
 #include <filesystem>
@@ -19,7 +19,7 @@ void require_output_path(const std::filesystem::path& path, std::initializer_lis
 // Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
 // each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.
 class StageLog;
-PolygonMesh read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log);
+RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log);
 
 // Prints "  stage    12.3 ms" lines on stderr when verbose.
 class StageLog {

@@ -26,9 +26,9 @@ void run_curve(const CurveArgs& a) {
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
 
   StageLog log(a.verbose);
-  PolygonMesh mesh = read_and_repair(a.input, a.strict, log);
+  RepairResult input = read_and_repair(a.input, a.strict, log);
   StageTimes times;
-  const CurveResult result = make_curve(std::move(mesh), job, &times);
+  const CurveResult result = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
 

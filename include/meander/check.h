@@ -2,6 +2,7 @@
 // changing the surface.
 #pragma once
 
+#include "meander/connectivity.h"
 #include "meander/mesh.h"
 
 #include <cstdint>
@@ -87,6 +88,9 @@ struct RepairResult {
   // What is worth telling but needs no repair, e.g. "component 0 is not orientable
   // (Möbius-like); faces left as they are".
   std::vector<std::string> notices;
+  // The edge connectivity of `mesh` when repair still holds a valid one (always, unless
+  // it re-oriented faces), so the pipeline need not build it again; empty otherwise.
+  Connectivity connectivity;
 };
 
 // Makes a mesh that the quadrangulation and the cycle accept: every index in range,

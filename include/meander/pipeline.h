@@ -40,6 +40,10 @@ struct CurveResult {
 // mesh with boundary under --quad catmull-clark or none, and what the stages throw.
 CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times = nullptr);
 
+// The same with the mesh's connectivity already known (RepairResult::connectivity); an
+// empty or mismatched one is rebuilt.
+CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times = nullptr);
+
 // The certificate of the cycle: the triangulated quad mesh with its triangles in cycle
 // order, one group per cycle (write it with MeshWriteOptions::group_start = cycle_start).
 PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle);
