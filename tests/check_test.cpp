@@ -751,12 +751,7 @@ TEST_P(CheckRealMesh, InspectMatchesIndexAndRepairKeepsTheSurface) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, CheckRealMesh, ::testing::ValuesIn(kMeshes),
-                         [](const ::testing::TestParamInfo<MeshFacts>& mesh) {
-                           std::string name = mesh.param.file;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         [](const ::testing::TestParamInfo<MeshFacts>& mesh) { return test::test_name(mesh.param.file); });
 
 // Strict mode refuses the broken meshes with the first problem, named after the file.
 TEST(CheckRepairStrict, RealMeshesMessages) {

@@ -9,13 +9,6 @@
 namespace meander::test {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 struct RealMesh {
   const char* file;
   int components;   // cycles expected after repair; -1: not stated by INDEX.md
@@ -91,10 +84,7 @@ TEST_P(CurveOnRealMesh, CertificateHoldsAndCurveLiesOnTheSurface) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Index, CurveOnRealMesh, ::testing::ValuesIn(real_meshes), [](const auto& param_info) {
-  std::string name = param_info.param.file;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
+  return test_name(param_info.param.file);
 });
 
 // --strict refuses what the default repairs, naming the file and the problem.
@@ -119,8 +109,8 @@ TEST(CliCurve, SameSeedSameBytesOtherSeedOtherCurve) {
     ASSERT_EQ(run_cli({"curve", in, "-o", a.string(), "--seed", "17"}).exit_code, 0);
     ASSERT_EQ(run_cli({"curve", in, "-o", b.string(), "--seed", "17"}).exit_code, 0);
     ASSERT_EQ(run_cli({"curve", in, "-o", c.string(), "--seed", "18"}).exit_code, 0);
-    EXPECT_EQ(slurp(a), slurp(b)) << ext;
-    EXPECT_NE(slurp(a), slurp(c)) << ext;
+    EXPECT_EQ(read_file(a), read_file(b)) << ext;
+    EXPECT_NE(read_file(a), read_file(c)) << ext;
   }
 }
 

@@ -27,12 +27,6 @@ namespace fs = std::filesystem;
 using test::output_dir;
 using test::write_file;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::vector<std::string> folder_listing(const fs::path& dir) {
   std::vector<std::string> names;
@@ -151,7 +145,7 @@ TEST(IoPly, FaceLargerThan255VerticesRoundTrips) {
   for (bool ascii : {false, true}) {
     const fs::path path = output_dir() / (ascii ? "ascii.ply" : "binary.ply");
     write_mesh(mesh, path, {.ascii = ascii});
-    EXPECT_NE(slurp(path).find("property list uint int vertex_indices"), std::string::npos);
+    EXPECT_NE(test::read_file(path).find("property list uint int vertex_indices"), std::string::npos);
     expect_same_mesh(read_mesh(path), mesh);
   }
 }
@@ -163,9 +157,9 @@ TEST(IoWrite, OutputIsDeterministic) {
   for (const char* name : {"a.obj", "a.off", "a.ply", "a.stl"})
     for (bool ascii : {false, true}) {
       write_mesh(mesh, dir / name, {.ascii = ascii});
-      const std::string first = slurp(dir / name);
+      const std::string first = test::read_file(dir / name);
       write_mesh(mesh, dir / name, {.ascii = ascii});
-      EXPECT_EQ(slurp(dir / name), first) << name;
+      EXPECT_EQ(test::read_file(dir / name), first) << name;
     }
 }
 
@@ -176,11 +170,11 @@ TEST(IoWrite, TextFormatsAreAsDocumented) {
   mesh.add_face({0, 2, 3, 1});
   const fs::path dir = output_dir();
   write_mesh(mesh, dir / "m.obj");
-  EXPECT_EQ(slurp(dir / "m.obj"), "v 0 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0 -2\nf 1 2 3\nf 1 3 4 2\n");
+  EXPECT_EQ(test::read_file(dir / "m.obj"), "v 0 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0 -2\nf 1 2 3\nf 1 3 4 2\n");
   write_mesh(mesh, dir / "m.off");
-  EXPECT_EQ(slurp(dir / "m.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1.5 0\n0 0 -2\n3 0 1 2\n4 0 2 3 1\n");
+  EXPECT_EQ(test::read_file(dir / "m.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1.5 0\n0 0 -2\n3 0 1 2\n4 0 2 3 1\n");
   write_mesh(mesh, dir / "m.ply", {.ascii = true});
-  EXPECT_EQ(slurp(dir / "m.ply"),
+  EXPECT_EQ(test::read_file(dir / "m.ply"),
             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
             "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
             "0 0 0\n1 0 0\n0 1.5 0\n0 0 -2\n3 0 1 2\n4 0 2 3 1\n");
@@ -192,7 +186,7 @@ TEST(IoWrite, BinaryStlHasComputedNormalsAndAHeaderThatIsNotSolid) {
   mesh.add_face({0, 1, 2, 3});
   const fs::path path = output_dir() / "quad.stl";
   write_mesh(mesh, path);
-  const std::string bytes = slurp(path);
+  const std::string bytes = test::read_file(path);
   ASSERT_EQ(bytes.size(), 84u + 2 * 50);
   EXPECT_NE(bytes.substr(0, 5), "solid");
   uint32_t count = 0;
@@ -216,7 +210,7 @@ TEST(IoWrite, ObjGroupsBecomeObjectLines) {
   const std::vector<int32_t> groups = {0, 2, 2, 3}; // the middle group is empty: no line for it
   const fs::path path = output_dir() / "groups.obj";
   write_mesh(mesh, path, {.group_start = groups});
-  const std::string text = slurp(path);
+  const std::string text = test::read_file(path);
   EXPECT_NE(text.find("o group_0\nf 1 2 3\nf 2 4 3\no group_2\nf 1 3 2\n"), std::string::npos) << text;
   expect_same_mesh(read_mesh(path), mesh);
 }
@@ -294,7 +288,7 @@ TEST(IoWrite, FailedWriteLeavesThePreviousFileUntouched) {
             path.string() + ": cannot write: File too large");
   ::setrlimit(RLIMIT_FSIZE, &old_limit);
   ::signal(SIGXFSZ, old_handler);
-  EXPECT_EQ(slurp(path), previous);
+  EXPECT_EQ(test::read_file(path), previous);
   EXPECT_EQ(folder_listing(dir), std::vector<std::string>{"big.ply"});
 }
 
@@ -432,7 +426,7 @@ TEST(IoPolylines, ObjHasClosedLineElements) {
   curves.start = {0, 3, 3, 7}; // the middle polyline is empty
   const fs::path path = output_dir() / "c.obj";
   write_polylines(curves, path);
-  EXPECT_EQ(slurp(path), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 5 5 5\nv 6 5 5\nv 6 6 5\nv 5 6 5\n"
+  EXPECT_EQ(test::read_file(path), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 5 5 5\nv 6 5 5\nv 6 6 5\nv 5 6 5\n"
                          "l 1 2 3 1\nl 4 5 6 7 4\n");
 }
 
@@ -442,7 +436,7 @@ TEST(IoPolylines, PlyHasClosingEdges) {
   curves.start = {0, 3, 4}; // a single point has no edge
   const fs::path path = output_dir() / "c.ply";
   write_polylines(curves, path);
-  const std::string bytes = slurp(path);
+  const std::string bytes = test::read_file(path);
   const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
                              "property float y\nproperty float z\nelement edge 3\nproperty int vertex1\n"
                              "property int vertex2\nend_header\n";
@@ -462,14 +456,14 @@ TEST(IoPolylines, JsonListsThePoints) {
   curves.start = {0, 3, 5};
   const fs::path path = output_dir() / "c.json";
   write_polylines(curves, path);
-  const nlohmann::json json = nlohmann::json::parse(slurp(path));
+  const nlohmann::json json = nlohmann::json::parse(test::read_file(path));
   ASSERT_EQ(json["polylines"].size(), 2u);
   EXPECT_EQ(json["polylines"][0]["closed"], true);
   ASSERT_EQ(json["polylines"][0]["points"].size(), 3u);
   EXPECT_EQ(json["polylines"][0]["points"][1][2].get<float>(), -1e-7f);
   EXPECT_EQ(json["polylines"][1]["points"][1], nlohmann::json::parse("[3,2,2]"));
   write_polylines(Polylines{}, path);
-  EXPECT_EQ(nlohmann::json::parse(slurp(path))["polylines"].size(), 0u);
+  EXPECT_EQ(nlohmann::json::parse(test::read_file(path))["polylines"].size(), 0u);
 }
 
 TEST(IoPolylines, SvgProjectsOntoTheXyPlaneFittedToThePage) {
@@ -479,7 +473,7 @@ TEST(IoPolylines, SvgProjectsOntoTheXyPlaneFittedToThePage) {
   const fs::path path = output_dir() / "c.svg";
   write_polylines(curves, path);
   // Width 2 maps to 960 units plus two margins of 20; y points down the page.
-  EXPECT_EQ(slurp(path), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000.00\" height=\"520.00\" "
+  EXPECT_EQ(test::read_file(path), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000.00\" height=\"520.00\" "
                          "viewBox=\"0 0 1000.00 520.00\">\n"
                          "<g fill=\"none\" stroke=\"black\" stroke-width=\"1\" stroke-linejoin=\"round\">\n"
                          "<path d=\"M20.00 500.00 L980.00 500.00 L980.00 20.00 L20.00 20.00 Z\"/>\n"

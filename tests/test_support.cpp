@@ -10,37 +10,45 @@ namespace meander::test {
 
 std::filesystem::path shared_meshes() { return MEANDER_SHARED_MESHES; }
 
-std::filesystem::path output_dir() {
+namespace {
+
+// build/tests/output/<Suite>.<Test>/, created if missing.
+std::filesystem::path current_test_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
+  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
+  const std::filesystem::path dir = std::filesystem::path(MEANDER_TEST_OUTPUT) / test_name(name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+} // namespace
+
+std::string test_name(std::string_view file) {
+  std::string name(file);
   for (char& c : name)
-    if (c == '/') c = '_';
-  const std::filesystem::path dir = std::filesystem::path(MEANDER_TEST_OUTPUT) / name;
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+std::filesystem::path output_dir() {
+  const std::filesystem::path dir = current_test_dir();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
 }
 
 std::filesystem::path write_file(std::string_view name, std::string_view text) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string dir_name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
-  for (char& c : dir_name)
-    if (c == '/') c = '_';
-  const std::filesystem::path dir = std::filesystem::path(MEANDER_TEST_OUTPUT) / dir_name;
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path path = dir / name;
+  const std::filesystem::path path = current_test_dir() / name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
 
-namespace {
-std::string slurp(const std::filesystem::path& path) {
+std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
 }
-} // namespace
 
 CommandResult run_cli(const std::vector<std::string>& args) {
   char out_template[] = "/tmp/meander_test_out_XXXXXX";
@@ -66,8 +74,8 @@ CommandResult run_cli(const std::vector<std::string>& args) {
   close(out_fd);
   close(err_fd);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  result.out = slurp(out_template);
-  result.err = slurp(err_template);
+  result.out = read_file(out_template);
+  result.err = read_file(err_template);
   std::filesystem::remove(out_template);
   std::filesystem::remove(err_template);
   return result;

@@ -24,8 +24,15 @@ std::filesystem::path shared_meshes();
 // An empty folder for the current test: build/tests/output/<Suite>.<Test>/.
 std::filesystem::path output_dir();
 
-// Writes `text` to a file in output_dir() and returns its path.
+// Writes `text` to a file in the current test's folder (without emptying it, unlike
+// output_dir()) and returns its path.
 std::filesystem::path write_file(std::string_view name, std::string_view text);
+
+// The whole file as bytes ("" if it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+
+// A GoogleTest parameter name made from a file name: "bunny_closed.off" -> "bunny_closed_off".
+std::string test_name(std::string_view file);
 
 struct CommandResult {
   int exit_code = -1;
