@@ -183,6 +183,22 @@ TEST(CliCurve, MissingInputAndMissingFolderAreRefused) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
+// A malformed file is refused through the CLI with the reader's file:line message and
+// exit code 1, and neither the curve nor the certificate appears.
+TEST(CliCurve, MalformedInputLeavesNoOutput) {
+  const auto dir = output_dir();
+  const auto bad = write_file("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  const auto curve = dir / "curve.obj", tri = dir / "cycle.obj";
+  const CommandResult r = run_cli({"curve", bad.string(), "-o", curve.string(), "--triangles", tri.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.obj:4: "), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(curve));
+  EXPECT_FALSE(std::filesystem::exists(tri));
+  const CommandResult info = run_cli({"info", bad.string()});
+  EXPECT_EQ(info.exit_code, 1);
+  EXPECT_NE(info.err.find("bad.obj:4: "), std::string::npos) << info.err;
+}
+
 TEST(CliCurve, HelpOnEverySubcommand) {
   for (const char* sub : {"curve", "info", "generate"}) {
     const CommandResult r = run_cli({sub, "--help"});
