@@ -35,6 +35,8 @@ echo "- kernel: $(uname -sr)"
 compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
 echo "- compiler: $("$compiler" --version | head -n 1)"
 echo "- build type: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt")"
+echo "- source: commit $(git rev-parse --short HEAD), plus $(git status --porcelain -- src include apps | wc -l)" \
+  "uncommitted files or folders of src/ include/ apps/ that the build picked up"
 echo "- load average at start: $(load)"
 if awk -v l="$(load)" 'BEGIN { exit !(l > 0.5) }'; then
   echo "- **warning: load above 0.5, someone else is using the cores: re-run when the machine is quiet**"

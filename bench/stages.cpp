@@ -53,7 +53,8 @@ Pass run_pass(const std::filesystem::path& input, const std::filesystem::path& o
   meander::RepairResult repaired = meander::repair(std::move(mesh), input.string());
   pass.times.emplace_back("check", lap(start));
   pass.repairs = std::move(repaired.repairs);
-  const meander::CurveResult result = meander::make_curve(std::move(repaired.mesh), {}, &pass.times);
+  const meander::CurveResult result =
+      meander::make_curve(std::move(repaired.mesh), std::move(repaired.connectivity), {}, &pass.times);
   start = Clock::now();
   meander::write_polylines(result.curves, output);
   pass.times.emplace_back("write", lap(start));
