@@ -65,8 +65,7 @@ echo
 echo "## Peers (Google Benchmark, median of 5 repetitions, same run)"
 echo
 echo '```'
-# Interleaving the repetitions spreads any change in the machine's load over every benchmark.
-"$build/bench/meander_bench_peers" --benchmark_enable_random_interleaving=true "$shared/bunny_closed.off" "$shared/stanford-bunny_original_holes.obj" \
+"$build/bench/meander_bench_peers" "$shared/bunny_closed.off" "$shared/stanford-bunny_original_holes.obj" \
   "$scratch/sphere_1m.ply" "$scratch/sphere_10m.ply" "$scratch/sphere_1m.obj" "$scratch/sphere_10m.obj" \
   > "$scratch/peers.txt"
 sed '/^$/,$d' "$scratch/peers.txt"
