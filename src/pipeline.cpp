@@ -40,19 +40,17 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
   Stopwatch watch(times);
   CurveResult result;
-  {
-    if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {
-      connectivity = build_connectivity(mesh);
-      watch.lap("connectivity");
-    }
-    switch (job.quadrangulation) {
-    case Quadrangulation::dual_simplest: result.quads = dual_simplest(mesh, connectivity); break;
-    case Quadrangulation::catmull_clark: result.quads = catmull_clark_quads(mesh, connectivity); break;
-    case Quadrangulation::none: result.quads = quads_as_is(mesh, connectivity); break;
-    }
-    mesh = PolygonMesh();
-    connectivity = Connectivity();
+  if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {
+    connectivity = build_connectivity(mesh);
+    watch.lap("connectivity");
   }
+  switch (job.quadrangulation) {
+  case Quadrangulation::dual_simplest: result.quads = dual_simplest(std::move(mesh), std::move(connectivity)); break;
+  case Quadrangulation::catmull_clark: result.quads = catmull_clark_quads(mesh, connectivity); break;
+  case Quadrangulation::none: result.quads = quads_as_is(mesh, connectivity); break;
+  }
+  mesh = PolygonMesh();
+  connectivity = Connectivity();
   if (job.quadrangulation != Quadrangulation::dual_simplest) {
     if (const int32_t open = count_open_sides(result.quads); open > 0)
       throw TopologyError("the mesh has boundary (" + std::to_string(open) +

@@ -16,10 +16,10 @@ void require_manifold_edges(const Connectivity& c) {
                           std::to_string(c.edge_degree(e)) + " faces: mesh is not manifold");
 }
 
-Vec3 face_centroid(const PolygonMesh& mesh, int32_t f) {
+Vec3 face_centroid(const PolygonMesh& mesh, std::span<const Vec3> positions, int32_t f) {
   double x = 0, y = 0, z = 0;
   for (int32_t v : mesh.face(f)) {
-    const Vec3 p = mesh.positions[size_t(v)];
+    const Vec3 p = positions[size_t(v)];
     x += p.x;
     y += p.y;
     z += p.z;
@@ -50,16 +50,19 @@ QuadMesh quads_with_adjacency(PolygonMesh quad_faces) {
 
 } // namespace
 
-QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
-  require_manifold_edges(c);
-  const int32_t nv = mesh.num_vertices();
+namespace {
+
+// dual_simplest with the vertex positions given apart, so the consuming overload can
+// move them in instead of copying; mesh.positions is not read.
+QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions, const Connectivity& c) {
+  const int32_t nv = int32_t(positions.size());
   const int32_t nf = mesh.num_faces();
   const int32_t ne = c.num_edges();
   QuadMesh q;
   q.face_point_offset = nv;
+  q.positions = std::move(positions);
   q.positions.reserve(size_t(nv) + size_t(nf));
-  q.positions.assign(mesh.positions.begin(), mesh.positions.end());
-  for (int32_t f = 0; f < nf; ++f) q.positions.push_back(face_centroid(mesh, f));
+  for (int32_t f = 0; f < nf; ++f) q.positions.push_back(face_centroid(mesh, std::span(q.positions.data(), size_t(nv)), f));
 
   // Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
   // F_a and its second halfedge b lies in face F_b. Each halfedge h of face F touches two
@@ -101,6 +104,24 @@ QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
   return q;
 }
 
+} // namespace
+
+QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
+  require_manifold_edges(c);
+  return dual_simplest_with(mesh, mesh.positions, c);
+}
+
+QuadMesh dual_simplest(PolygonMesh&& mesh, Connectivity&& c) {
+  require_manifold_edges(c);
+  // The quads are the largest arrays so far: release what they do not need first (the
+  // edge count comes from edge_start).
+  std::vector<std::array<int32_t, 2>>().swap(c.edge_vertices);
+  QuadMesh q = dual_simplest_with(mesh, std::move(mesh.positions), c);
+  mesh = PolygonMesh();
+  c = Connectivity();
+  return q;
+}
+
 QuadMesh catmull_clark_quads(const PolygonMesh& mesh, const Connectivity& c) {
   require_manifold_edges(c);
   const int32_t nv = mesh.num_vertices();
@@ -113,7 +134,7 @@ QuadMesh catmull_clark_quads(const PolygonMesh& mesh, const Connectivity& c) {
     const auto [u, v] = c.edge_vertices[size_t(e)];
     out.positions.push_back((mesh.positions[size_t(u)] + mesh.positions[size_t(v)]) * 0.5f);
   }
-  for (int32_t f = 0; f < nf; ++f) out.positions.push_back(face_centroid(mesh, f));
+  for (int32_t f = 0; f < nf; ++f) out.positions.push_back(face_centroid(mesh, mesh.positions, f));
   out.face_vertices.reserve(size_t(mesh.num_corners()) * 4);
   out.face_start.reserve(size_t(mesh.num_corners()) + 1);
   for (int32_t f = 0; f < nf; ++f) {

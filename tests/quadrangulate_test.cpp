@@ -46,6 +46,20 @@ TEST(DualSimplest, OneQuadPerEdgeWithCornersV1F2V2F1) {
   EXPECT_EQ(count_open_sides(q), 0);
 }
 
+// The consuming overload builds the same quads and leaves its inputs empty.
+TEST(DualSimplest, ConsumingOverloadMatchesAndReleases) {
+  PolygonMesh m = moebius(60);
+  Connectivity c = build_connectivity(m);
+  const QuadMesh copy = dual_simplest(m, c);
+  const QuadMesh moved = dual_simplest(std::move(m), std::move(c));
+  EXPECT_EQ(moved.positions, copy.positions);
+  EXPECT_EQ(moved.quads, copy.quads);
+  EXPECT_EQ(moved.neighbors, copy.neighbors);
+  EXPECT_EQ(moved.face_point_offset, copy.face_point_offset);
+  EXPECT_TRUE(m.face_vertices.empty()); // NOLINT(bugprone-use-after-move): checking the release
+  EXPECT_TRUE(c.halfedge_edge.empty()); // NOLINT(bugprone-use-after-move)
+}
+
 // On an oriented surface the quads keep its orientation: quad (v1, f2, v2, f1) has the
 // normal of face f1.
 TEST(DualSimplest, QuadsFollowTheSurfaceOrientation) {

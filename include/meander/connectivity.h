@@ -26,7 +26,7 @@ struct Connectivity {
   std::vector<int32_t> edge_start;
   std::vector<int32_t> edge_halfedges;
 
-  int32_t num_edges() const { return int32_t(edge_vertices.size()); }
+  int32_t num_edges() const { return edge_start.empty() ? 0 : int32_t(edge_start.size()) - 1; }
   int32_t edge_degree(int32_t e) const { return edge_start[e + 1] - edge_start[e]; }
   std::span<const int32_t> halfedges(int32_t e) const {
     return {edge_halfedges.data() + edge_start[e], size_t(edge_degree(e))};

@@ -40,6 +40,10 @@ struct QuadMesh {
 // Throws TopologyError if an edge is shared by more than two faces (repair first).
 QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& connectivity);
 
+// The same, consuming the mesh and its connectivity (both left empty) so that their
+// memory is released as the quads are built: the pipeline's peak on large meshes.
+QuadMesh dual_simplest(PolygonMesh&& mesh, Connectivity&& connectivity);
+
 // Catmull-Clark topology (one refinement step, without moving anything): per face
 // corner a quad (vertex, edge midpoint, face centroid, edge midpoint). Vertices: input
 // vertices, then one per edge, then one per face. The result is 2-colourable ({vertex,
