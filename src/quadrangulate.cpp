@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace meander {
 
 namespace {
@@ -61,8 +64,12 @@ QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions
   QuadMesh q;
   q.face_point_offset = nv;
   q.positions = std::move(positions);
-  q.positions.reserve(size_t(nv) + size_t(nf));
-  for (int32_t f = 0; f < nf; ++f) q.positions.push_back(face_centroid(mesh, std::span(q.positions.data(), size_t(nv)), f));
+  q.positions.resize(size_t(nv) + size_t(nf));
+  // Every loop below writes only its own elements, so each runs in parallel.
+  const std::span<const Vec3> vertices(q.positions.data(), size_t(nv));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
+    for (int32_t f = faces.begin(); f < faces.end(); ++f) q.positions[size_t(nv + f)] = face_centroid(mesh, vertices, f);
+  });
 
   // Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
   // F_a and its second halfedge b lies in face F_b. Each halfedge h of face F touches two
@@ -70,37 +77,42 @@ QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions
   // quad sides those are. The second halfedge may run either way (non-orientable or
   // misoriented input), which changes its sides.
   q.quads.resize(size_t(ne));
-  q.neighbors.assign(size_t(ne), {-1, -1, -1, -1});
+  q.neighbors.resize(size_t(ne));
   std::vector<uint8_t> tail_side(size_t(mesh.num_corners())), head_side(size_t(mesh.num_corners()));
-  for (int32_t e = 0; e < ne; ++e) {
-    const auto hs = c.halfedges(e);
-    const int32_t a = hs[0];
-    const int32_t x = mesh.face_vertices[size_t(a)];
-    const int32_t y = halfedge_target(mesh, c, a);
-    const int32_t fa = nv + c.halfedge_face[size_t(a)];
-    tail_side[size_t(a)] = 3;
-    head_side[size_t(a)] = 2;
-    if (hs.size() == 1) {
-      q.quads[size_t(e)] = {x, -1, y, fa};
-      continue;
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, ne, 1 << 14), [&](const tbb::blocked_range<int32_t>& edges) {
+    for (int32_t e = edges.begin(); e < edges.end(); ++e) {
+      const auto hs = c.halfedges(e);
+      const int32_t a = hs[0];
+      const int32_t x = mesh.face_vertices[size_t(a)];
+      const int32_t y = halfedge_target(mesh, c, a);
+      const int32_t fa = nv + c.halfedge_face[size_t(a)];
+      tail_side[size_t(a)] = 3;
+      head_side[size_t(a)] = 2;
+      q.neighbors[size_t(e)] = {-1, -1, -1, -1};
+      if (hs.size() == 1) {
+        q.quads[size_t(e)] = {x, -1, y, fa};
+        continue;
+      }
+      const int32_t b = hs[1];
+      q.quads[size_t(e)] = {x, nv + c.halfedge_face[size_t(b)], y, fa};
+      const bool same_direction = mesh.face_vertices[size_t(b)] == x;
+      tail_side[size_t(b)] = same_direction ? 0 : 1;
+      head_side[size_t(b)] = same_direction ? 1 : 0;
     }
-    const int32_t b = hs[1];
-    q.quads[size_t(e)] = {x, nv + c.halfedge_face[size_t(b)], y, fa};
-    const bool same_direction = mesh.face_vertices[size_t(b)] == x;
-    tail_side[size_t(b)] = same_direction ? 0 : 1;
-    head_side[size_t(b)] = same_direction ? 1 : 0;
-  }
+  });
   // The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
-  // is shared by the quads of h and next(h).
-  for (int32_t f = 0; f < nf; ++f) {
-    const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
-    for (int32_t h = first; h < last; ++h) {
-      const int32_t g = h + 1 == last ? first : h + 1;
-      const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
-      q.neighbors[size_t(qh)][head_side[size_t(h)]] = 4 * qg + tail_side[size_t(g)];
-      q.neighbors[size_t(qg)][tail_side[size_t(g)]] = 4 * qh + head_side[size_t(h)];
+  // is shared by the quads of h and next(h); each quad side is written by one corner.
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
+    for (int32_t f = faces.begin(); f < faces.end(); ++f) {
+      const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
+      for (int32_t h = first; h < last; ++h) {
+        const int32_t g = h + 1 == last ? first : h + 1;
+        const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
+        q.neighbors[size_t(qh)][head_side[size_t(h)]] = 4 * qg + tail_side[size_t(g)];
+        q.neighbors[size_t(qg)][tail_side[size_t(g)]] = 4 * qh + head_side[size_t(h)];
+      }
     }
-  }
+  });
   return q;
 }
 
