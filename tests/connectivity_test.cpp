@@ -1,8 +1,12 @@
 #include "meander/connectivity.h"
 
+#include "meander/shapes.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
+#include <numeric>
 
 namespace meander {
 namespace {
@@ -60,6 +64,40 @@ TEST(Connectivity, HighValenceFan) {
     }
   EXPECT_EQ(spokes, 200);
   EXPECT_TRUE(std::is_sorted(c.edge_vertices.begin(), c.edge_vertices.end()));
+}
+
+// Against a plain reference (a std::map from the vertex pair to its halfedges), on a mesh
+// large enough to span several of the parallel vertex blocks and with its faces shuffled
+// so that the threads' placement order varies.
+TEST(Connectivity, MatchesAMapReferenceOnALargeShuffledMesh) {
+  const PolygonMesh sorted_faces = sphere(300000);
+  PolygonMesh m;
+  m.positions = sorted_faces.positions;
+  const int64_t n = sorted_faces.num_faces();
+  ASSERT_EQ(std::gcd(int64_t(7919), n), 1); // so i -> 7919 i mod n is a permutation
+  for (int64_t i = 0; i < n; ++i) m.add_face(sorted_faces.face(int32_t(i * 7919 % n)));
+  ASSERT_GT(m.num_vertices(), 3 * 32768);
+
+  std::map<std::array<int32_t, 2>, std::vector<int32_t>> reference;
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const auto v = m.face(f);
+    for (size_t i = 0; i < v.size(); ++i) {
+      const int32_t a = v[i], b = v[(i + 1) % v.size()];
+      reference[{std::min(a, b), std::max(a, b)}].push_back(m.face_start[f] + int32_t(i));
+    }
+  }
+  const Connectivity c = build_connectivity(m);
+  ASSERT_EQ(size_t(c.num_edges()), reference.size());
+  int32_t e = 0;
+  for (const auto& [ends, halfedges] : reference) {
+    ASSERT_EQ(c.edge_vertices[size_t(e)], ends);
+    ASSERT_EQ(std::vector<int32_t>(c.halfedges(e).begin(), c.halfedges(e).end()), halfedges);
+    for (int32_t h : halfedges) {
+      ASSERT_EQ(c.halfedge_edge[size_t(h)], e);
+      ASSERT_EQ(m.face_start[c.halfedge_face[size_t(h)]] <= h && h < m.face_start[c.halfedge_face[size_t(h)] + 1], true);
+    }
+    ++e;
+  }
 }
 
 } // namespace
