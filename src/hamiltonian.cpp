@@ -57,6 +57,9 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
   // triangle has two quad sides, each side two triangles): the nodes of the graph.
   Graph graph;
   std::vector<int32_t> edge_quad;
+  // At most one graph edge per quad: reserving spares the copies of a growing array.
+  graph.edges.reserve(size_t(nq));
+  edge_quad.reserve(size_t(nq));
   auto join = [&](int32_t q, int32_t a, int32_t b) {
     if (a == b) return;
     graph.edges.push_back({a, b});

@@ -68,6 +68,7 @@ std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
   for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(uint32_t(i))]);
   UnionFind sets(g.num_nodes);
   std::vector<int32_t> forest;
+  forest.reserve(size_t(g.num_nodes));
   constexpr size_t ahead = 8;
   for (size_t i = 0; i < order.size(); ++i) {
     if (i + ahead < order.size()) {
@@ -93,6 +94,7 @@ std::vector<int32_t> breadth_first(const Graph& g, Random& rng) {
   const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
   std::vector<int32_t> forest, queue;
+  forest.reserve(size_t(g.num_nodes));
   queue.reserve(size_t(g.num_nodes));
   for (int32_t i = 0; i < g.num_nodes; ++i) {
     const int32_t root = nodes[i];
@@ -120,6 +122,7 @@ std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
   // differently for each seed while the total work stays linear.
   std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
   std::vector<int32_t> forest, stack;
+  forest.reserve(size_t(g.num_nodes));
   for (int32_t i = 0; i < g.num_nodes; ++i) {
     const int32_t r = nodes[i];
     if (seen[size_t(r)]) continue;
@@ -166,6 +169,7 @@ std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   }
   std::vector<int32_t> next_node(size_t(g.num_nodes), -1), next_edge(size_t(g.num_nodes), -1);
   std::vector<int32_t> forest;
+  forest.reserve(size_t(g.num_nodes));
   for (int32_t s = 0; s < g.num_nodes; ++s) {
     for (int32_t u = s; !in_tree[size_t(u)];) {
       const int32_t degree = a.start[size_t(u) + 1] - a.start[size_t(u)];
