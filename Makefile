@@ -6,7 +6,8 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
-                   libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev
+                   libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev \
+                   libembree-dev libstb-dev
 
 .PHONY: deps build demo test bench clean
 

@@ -3,6 +3,7 @@
 
 #include "meander/io.h"
 #include "meander/pipeline.h"
+#include "meander/render.h"
 
 #include <memory>
 
@@ -11,7 +12,7 @@ namespace meander::cli {
 namespace {
 
 struct CurveArgs {
-  std::string input, output, triangles;
+  std::string input, output, triangles, png;
   std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
   uint64_t seed = 1;
   int samples = 4;
@@ -24,10 +25,13 @@ void run_curve(const CurveArgs& a) {
                      .curve = {.smoothing = parse_smoothing(a.smooth), .samples = a.samples}};
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
+  if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log);
   StageTimes times;
+  // The picture draws the surface under the curve; make_curve consumes the mesh.
+  PolygonMesh surface = a.png.empty() ? PolygonMesh{} : input.mesh;
   const CurveResult result = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
@@ -37,6 +41,13 @@ void run_curve(const CurveArgs& a) {
   if (!a.triangles.empty()) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
     log.lap("write cycle");
+  }
+  if (!a.png.empty()) {
+    Scene scene;
+    scene.meshes.push_back({.mesh = std::move(surface), .color = {0.82f, 0.82f, 0.82f}});
+    scene.curves.push_back({.curves = result.curves});
+    write_png(render(scene, {}), a.png);
+    log.lap("render png");
   }
   log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
            (result.curves.size() == 1 ? "" : "s") + ", " + std::to_string(result.curves.points.size()) + " points");
@@ -58,6 +69,7 @@ Command add_curve_command(CLI::App& parent) {
   app->add_option("--smooth", args->smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
   app->add_option("--samples", args->samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
+  app->add_option("--png", args->png, "also render the curve on its surface to this picture (.png)");
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
   return {app, [args] { run_curve(*args); }};

@@ -45,6 +45,13 @@ PolygonMesh read_mesh(const std::filesystem::path& path);
 // The same from bytes in memory; `name` stands for the file in messages.
 PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
 
+// Reads closed polylines from the `l` elements of an OBJ file (v/vt indices, negative
+// and forward indices as for faces). Each `l` is one closed loop: a last index equal to
+// the first closes it and is not kept as a point. Faces and other statements are
+// skipped. Refuses lines of fewer than 2 vertices and a file without `l` ("no
+// polylines"); other extensions are a UsageError (PLY edges are not read yet).
+Polylines read_polylines(const std::filesystem::path& path);
+
 struct MeshWriteOptions {
   // PLY and STL are written in binary unless this is set.
   bool ascii = false;

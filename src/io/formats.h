@@ -19,6 +19,7 @@ PolygonMesh read_obj(std::string_view bytes, std::string_view name);
 PolygonMesh read_ply(std::string_view bytes, std::string_view name);
 PolygonMesh read_stl(std::string_view bytes, std::string_view name);
 PolygonMesh read_off(std::string_view bytes, std::string_view name);
+Polylines read_obj_polylines(std::string_view bytes, std::string_view name);
 
 void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);

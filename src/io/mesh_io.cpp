@@ -91,6 +91,14 @@ PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_vie
   throw UsageError(std::string(name) + ": unknown mesh format");
 }
 
+Polylines read_polylines(const std::filesystem::path& path) {
+  if (const std::string extension = io::lowercase_extension(path); extension != ".obj")
+    throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj)");
+  const MappedFile file(path);
+  if (file.bytes().empty()) io::fail_input(path.string(), "file is empty");
+  return io::read_obj_polylines(file.bytes(), path.string());
+}
+
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options) {
   const MeshFormat format = mesh_format_from_path(path);
   const std::span<const int32_t> groups = options.group_start;

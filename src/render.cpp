@@ -1,0 +1,428 @@
+#include "meander/render.h"
+
+#include "meander/error.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace meander {
+namespace {
+
+constexpr int32_t max_side = 16384;
+constexpr double pi = 3.14159265358979323846;
+
+struct V3 {
+  double x = 0, y = 0, z = 0;
+  V3() = default;
+  V3(double a, double b, double c) : x(a), y(b), z(c) {}
+  explicit V3(Vec3 p) : x(p.x), y(p.y), z(p.z) {}
+  friend V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+  friend V3 operator*(V3 a, V3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+};
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+V3 normalized(V3 a) {
+  const double n = std::sqrt(dot(a, a));
+  return n > 0 ? a * (1 / n) : V3{0, 0, 0};
+}
+
+// Shading is done in linear light; colours arrive and leave as sRGB (gamma 2.2 is close
+// enough for pictures, and cheaper than the exact curve).
+V3 linear(Rgb c) { return {std::pow(c.r, 2.2), std::pow(c.g, 2.2), std::pow(c.b, 2.2)}; }
+uint8_t to_byte(double linear_value) {
+  const double v = std::pow(std::clamp(linear_value, 0.0, 1.0), 1 / 2.2);
+  return uint8_t(std::lround(v * 255));
+}
+
+// A hash of the pixel, sample and use, so that every random number is fixed by where it
+// is used and not by the order threads run in: the same bytes on every run.
+float random01(uint32_t x, uint32_t y, uint32_t sample, uint32_t use) {
+  uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ sample * 0xcb1ab31fu ^ use * 0x165667b1u;
+  h ^= h >> 16;
+  h *= 0x7feb352du;
+  h ^= h >> 15;
+  h *= 0x846ca68bu;
+  h ^= h >> 16;
+  return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+// Geometry masks: primary rays see everything; occlusion rays skip occluder-only
+// meshes, which must leave no trace in the picture, not even a darker contact.
+constexpr unsigned drawn_mask = 1, curve_mask = 2, occluder_mask = 4;
+
+struct DeviceDeleter {
+  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+};
+struct SceneDeleter {
+  void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+// What shading needs of each Embree geometry, indexed by its id.
+struct GeometryInfo {
+  V3 albedo;
+  bool curve = false, occluder_only = false;
+  std::vector<uint32_t> triangles; // 3 vertex ids per triangle
+  std::vector<Vec3> normals;       // per vertex, unnormalised area-weighted
+};
+
+struct Camera {
+  V3 eye, forward, right, up;
+  double tan_half_height = 0, aspect = 1;
+};
+
+Camera fit_camera(const Scene& scene, const RenderOptions& o) {
+  const double az = o.view.azimuth * pi / 180, el = std::clamp(o.view.elevation, -89.9, 89.9) * pi / 180;
+  Camera c;
+  const V3 from{std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
+  c.forward = from * -1;
+  // Looking straight down, the world's up is along the view: then "up" on the picture
+  // is the direction the azimuth faces away from.
+  const V3 world_up = std::abs(o.view.elevation) > 89.9 ? V3{-std::sin(az), 0, -std::cos(az)} : V3{0, 1, 0};
+  c.right = normalized(cross(c.forward, world_up));
+  c.up = cross(c.right, c.forward);
+  c.aspect = double(o.width) / o.height;
+  c.tan_half_height = std::tan(25 * pi / 180 / 2);
+
+  // Centre on the extent of the points across the view, then back off until every
+  // point is inside the frame with a 6% margin on each side.
+  Box3 box;
+  auto each_point = [&](auto&& f) {
+    for (const SceneMesh& m : scene.meshes)
+      for (Vec3 p : m.mesh.positions) f(V3(p));
+    for (const SceneCurves& k : scene.curves)
+      for (Vec3 p : k.curves.points) f(V3(p));
+  };
+  each_point([&](V3 p) { box.extend({float(p.x), float(p.y), float(p.z)}); });
+  if (box.empty()) box.extend({0, 0, 0});
+  const V3 centre = (V3(box.min) + V3(box.max)) * 0.5;
+  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+  each_point([&](V3 p) {
+    const V3 d = p - centre;
+    lo_x = std::min(lo_x, dot(d, c.right)), hi_x = std::max(hi_x, dot(d, c.right));
+    lo_y = std::min(lo_y, dot(d, c.up)), hi_y = std::max(hi_y, dot(d, c.up));
+  });
+  const V3 target = centre + c.right * ((lo_x + hi_x) / 2) + c.up * ((lo_y + hi_y) / 2);
+  const double tan_y = c.tan_half_height * 0.88, tan_x = tan_y * c.aspect;
+  double distance = 0;
+  each_point([&](V3 p) {
+    const V3 d = p - target;
+    const double depth = dot(d, c.forward);
+    distance = std::max({distance, std::abs(dot(d, c.right)) / tan_x - depth, std::abs(dot(d, c.up)) / tan_y - depth});
+  });
+  if (distance <= 0) distance = 1;
+  c.eye = target - c.forward * distance;
+  return c;
+}
+
+double mesh_area(const PolygonMesh& m) {
+  double area = 0;
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const auto face = m.face(f);
+    for (size_t i = 1; i + 1 < face.size(); ++i)
+      area += 0.5 * norm(meander::cross(m.positions[face[i]] - m.positions[face[0]],
+                                        m.positions[face[i + 1]] - m.positions[face[0]]));
+  }
+  return area;
+}
+
+double curve_length(const Polylines& c) {
+  double length = 0;
+  for (int32_t k = 0; k < c.size(); ++k) {
+    const auto pts = c.polyline(k);
+    for (size_t i = 0; i < pts.size(); ++i) length += norm(pts[(i + 1) % pts.size()] - pts[i]);
+  }
+  return length;
+}
+
+void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
+  GeometryInfo g{.albedo = linear(m.color), .occluder_only = m.occluder_only};
+  const PolygonMesh& mesh = m.mesh;
+  g.normals.assign(mesh.positions.size(), Vec3{});
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto face = mesh.face(f);
+    for (size_t i = 1; i + 1 < face.size(); ++i) {
+      const uint32_t a = face[0], b = face[i], c = face[i + 1];
+      g.triangles.insert(g.triangles.end(), {a, b, c});
+      if (m.occluder_only) continue;
+      // The cross product's length is twice the area: area-weighted for free.
+      const Vec3 n = meander::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+      for (uint32_t v : {a, b, c}) g.normals[v] = g.normals[v] + n;
+    }
+  }
+  if (g.triangles.empty()) return;
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.positions.size()));
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    vertices[3 * v] = mesh.positions[v].x;
+    vertices[3 * v + 1] = mesh.positions[v].y;
+    vertices[3 * v + 2] = mesh.positions[v].z;
+  }
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(uint32_t), g.triangles.size() / 3));
+  std::copy(g.triangles.begin(), g.triangles.end(), indices);
+  rtcSetGeometryMask(geometry, m.occluder_only ? occluder_mask : drawn_mask);
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(rtc, geometry);
+  rtcReleaseGeometry(geometry);
+  info.resize(std::max<size_t>(info.size(), id + 1));
+  info[id] = std::move(g);
+}
+
+void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, float radius, std::vector<GeometryInfo>& info) {
+  // A closed loop of n points is n segments: the first point is repeated at the end.
+  size_t points = 0, segments = 0;
+  for (int32_t i = 0; i < k.curves.size(); ++i)
+    if (const size_t n = k.curves.polyline(i).size(); n >= 2) points += n + 1, segments += n;
+  if (segments == 0) return;
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
+  auto* indices = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(uint32_t), segments));
+  size_t p = 0, s = 0;
+  for (int32_t i = 0; i < k.curves.size(); ++i) {
+    const auto loop = k.curves.polyline(i);
+    if (loop.size() < 2) continue;
+    for (size_t j = 0; j <= loop.size(); ++j) {
+      const Vec3 q = loop[j % loop.size()];
+      if (j < loop.size()) indices[s++] = uint32_t(p);
+      vertices[4 * p] = q.x, vertices[4 * p + 1] = q.y, vertices[4 * p + 2] = q.z, vertices[4 * p + 3] = radius;
+      ++p;
+    }
+  }
+  rtcSetGeometryMask(geometry, curve_mask);
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(rtc, geometry);
+  rtcReleaseGeometry(geometry);
+  info.resize(std::max<size_t>(info.size(), id + 1));
+  info[id] = GeometryInfo{.albedo = linear(k.color), .curve = true};
+}
+
+struct Hit {
+  bool found = false;
+  unsigned geometry = 0;
+  V3 position, normal;
+};
+
+class Tracer {
+public:
+  Tracer(RTCScene scene, const std::vector<GeometryInfo>& info) : scene_(scene), info_(info) {}
+
+  Hit trace(V3 origin, V3 direction) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    set_ray(rh.ray, origin, direction, 0, std::numeric_limits<float>::infinity(), drawn_mask | curve_mask | occluder_mask);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    Hit h;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    h.found = true;
+    h.geometry = rh.hit.geomID;
+    h.position = origin + direction * rh.ray.tfar;
+    const GeometryInfo& g = info_[h.geometry];
+    V3 n = normalized(V3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
+    if (!g.curve && !g.occluder_only) {
+      const uint32_t* t = &g.triangles[3 * size_t(rh.hit.primID)];
+      const double u = rh.hit.u, v = rh.hit.v;
+      const V3 smooth = normalized(V3(g.normals[t[0]]) * (1 - u - v) + V3(g.normals[t[1]]) * u + V3(g.normals[t[2]]) * v);
+      // Meshes are drawn from both sides: the normal faces the viewer. A smooth normal
+      // that disagrees with the face's own side (at silhouettes) would shade black.
+      if (dot(n, direction) > 0) n = n * -1;
+      if (dot(smooth, smooth) > 0) n = dot(smooth, n) < 0 ? smooth * -1 : smooth;
+    } else if (dot(n, direction) > 0) {
+      n = n * -1;
+    }
+    h.normal = n;
+    return h;
+  }
+
+  bool occluded(V3 origin, V3 direction, float far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    set_ray(ray, origin, direction, 0, far, drawn_mask | curve_mask);
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0;
+  }
+
+private:
+  static void set_ray(RTCRay& r, V3 o, V3 d, float near, float far, unsigned mask) {
+    r.org_x = float(o.x), r.org_y = float(o.y), r.org_z = float(o.z);
+    r.dir_x = float(d.x), r.dir_y = float(d.y), r.dir_z = float(d.z);
+    r.tnear = near, r.tfar = far, r.mask = mask, r.flags = 0, r.time = 0;
+  }
+  RTCScene scene_;
+  const std::vector<GeometryInfo>& info_;
+};
+
+} // namespace
+
+View parse_view(std::string_view text) {
+  if (text == "front") return {0, 0};
+  if (text == "back") return {180, 0};
+  if (text == "right") return {90, 0};
+  if (text == "left") return {-90, 0};
+  if (text == "top") return {0, 90};
+  if (text == "iso") return {};
+  View v;
+  const size_t comma = text.find(',');
+  const char* end = text.data() + text.size();
+  if (comma != std::string_view::npos) {
+    const auto [az_end, az_error] = std::from_chars(text.data(), text.data() + comma, v.azimuth);
+    const auto [el_end, el_error] = std::from_chars(text.data() + comma + 1, end, v.elevation);
+    if (az_error == std::errc{} && az_end == text.data() + comma && el_error == std::errc{} && el_end == end &&
+        std::isfinite(v.azimuth) && std::abs(v.elevation) <= 90)
+      return v;
+  }
+  throw UsageError("view '" + std::string(text) +
+                   "': expected front, back, left, right, top, iso or AZ,EL in degrees (elevation -90..90)");
+}
+
+Background parse_background(std::string_view text) {
+  if (text == "white") return {};
+  if (text == "transparent") return {.transparent = true};
+  auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
+  if (text.size() == 7 && text[0] == '#' &&
+      std::all_of(text.begin() + 1, text.end(), [&](char c) { return hex(c) >= 0; })) {
+    auto channel = [&](int i) { return float(hex(text[i]) * 16 + hex(text[i + 1])) / 255; };
+    return {.color = {channel(1), channel(3), channel(5)}};
+  }
+  throw UsageError("background '" + std::string(text) + "': expected white, transparent or #rrggbb");
+}
+
+void parse_size(std::string_view text, int32_t& width, int32_t& height) {
+  const size_t x = text.find('x');
+  const char* end = text.data() + text.size();
+  if (x != std::string_view::npos) {
+    int32_t w = 0, h = 0;
+    const auto [w_end, w_error] = std::from_chars(text.data(), text.data() + x, w);
+    const auto [h_end, h_error] = std::from_chars(text.data() + x + 1, end, h);
+    if (w_error == std::errc{} && w_end == text.data() + x && h_error == std::errc{} && h_end == end && w >= 1 &&
+        h >= 1 && w <= max_side && h <= max_side) {
+      width = w, height = h;
+      return;
+    }
+  }
+  throw UsageError("size '" + std::string(text) + "': expected WIDTHxHEIGHT, each 1.." + std::to_string(max_side) +
+                   " pixels");
+}
+
+Image render(const Scene& scene, const RenderOptions& o) {
+  if (o.width < 1 || o.height < 1 || o.width > max_side || o.height > max_side)
+    throw UsageError("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                     ": width and height must be 1.." + std::to_string(max_side) + " pixels");
+  if (o.samples < 1 || o.samples > 1024)
+    throw UsageError("samples " + std::to_string(o.samples) + ": expected 1..1024 rays per pixel");
+
+  const Camera camera = fit_camera(scene, o);
+  Box3 box;
+  for (const SceneMesh& m : scene.meshes)
+    for (Vec3 p : m.mesh.positions) box.extend(p);
+  for (const SceneCurves& k : scene.curves)
+    for (Vec3 p : k.curves.points) box.extend(p);
+  const double diagonal = std::max(box.diagonal(), 1e-6);
+  const V3 centre = box.empty() ? V3{} : (V3(box.min) + V3(box.max)) * 0.5;
+  // The size of a pixel at the scene's centre, in scene units.
+  const double pixel_size = 2 * camera.tan_half_height * dot(centre - camera.eye, camera.forward) / o.height;
+
+  double area = 0, length = 0;
+  for (const SceneMesh& m : scene.meshes) area += mesh_area(m.mesh);
+  for (const SceneCurves& k : scene.curves) length += curve_length(k.curves);
+  // A curve that covers a surface passes at about area / length from its neighbours;
+  // a curve that covers little of a large surface would get a tube as thick as a limb.
+  const double radius = o.curve_width > 0 ? o.curve_width * pixel_size / 2
+                  : area > 0 && length > 0 ? std::max(std::min(0.25 * area / length / 2, 0.004 * diagonal), 0.75 * pixel_size)
+                                           : pixel_size;
+
+  const DeviceHandle device(rtcNewDevice(nullptr));
+  if (!device) throw Error("render: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  const SceneHandle rtc(rtcNewScene(device.get()));
+  std::vector<GeometryInfo> info;
+  for (const SceneMesh& m : scene.meshes) add_mesh(device.get(), rtc.get(), m, info);
+  for (const SceneCurves& k : scene.curves) add_curves(device.get(), rtc.get(), k, float(radius), info);
+  rtcCommitScene(rtc.get());
+  const Tracer tracer(rtc.get(), info);
+
+  const V3 key = normalized(camera.forward * -0.75 + camera.up * 0.55 + camera.right * -0.35);
+  const V3 background = linear(o.background.color);
+  const double ao_distance = 0.08 * diagonal, offset = 1e-4 * diagonal;
+  const int ao_rays = o.samples >= 4 ? 2 : 4;
+
+  Image image{.width = o.width, .height = o.height, .has_alpha = o.background.transparent};
+  image.rgba.resize(size_t(o.width) * o.height * 4);
+  constexpr int tile = 16;
+  const int tiles_x = (o.width + tile - 1) / tile, tiles_y = (o.height + tile - 1) / tile;
+  tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
+    for (int t = range.begin(); t != range.end(); ++t) {
+      const int x0 = t % tiles_x * tile, y0 = t / tiles_x * tile;
+      for (int y = y0; y < std::min(y0 + tile, o.height); ++y)
+        for (int x = x0; x < std::min(x0 + tile, o.width); ++x) {
+          V3 sum;
+          double coverage = 0;
+          for (int s = 0; s < o.samples; ++s) {
+            // Stratified along a rank-1 lattice (the R2 sequence), shifted per pixel:
+            // even coverage of the pixel without visible patterns.
+            const double jx = std::fmod(0.5 + s * 0.7548776662 + random01(x, y, 0, 0), 1.0);
+            const double jy = std::fmod(0.5 + s * 0.5698402910 + random01(x, y, 0, 1), 1.0);
+            const double sx = (2 * (x + jx) / o.width - 1) * camera.tan_half_height * camera.aspect;
+            const double sy = (1 - 2 * (y + jy) / o.height) * camera.tan_half_height;
+            const V3 direction = normalized(camera.forward + camera.right * sx + camera.up * sy);
+            const Hit hit = tracer.trace(camera.eye, direction);
+            if (!hit.found || info[hit.geometry].occluder_only) continue;
+            const GeometryInfo& g = info[hit.geometry];
+            const V3 n = hit.normal;
+            // Cosine-weighted directions around n for ambient occlusion.
+            const V3 a = std::abs(n.x) > 0.5 ? V3{0, 1, 0} : V3{1, 0, 0};
+            const V3 b1 = normalized(cross(n, a)), b2 = cross(n, b1);
+            const V3 start = hit.position + n * offset;
+            int open = 0;
+            for (int r = 0; r < ao_rays; ++r) {
+              const double u1 = random01(x, y, s, 2 + 2 * r), u2 = random01(x, y, s, 3 + 2 * r);
+              const double radial = std::sqrt(u1), phi = 2 * pi * u2;
+              const V3 d = b1 * (radial * std::cos(phi)) + b2 * (radial * std::sin(phi)) + n * std::sqrt(1 - u1);
+              open += !tracer.occluded(start, d, float(ao_distance));
+            }
+            const double ao = double(open) / ao_rays;
+            const double diffuse = std::max(0.0, dot(n, key));
+            const double sky = 0.55 + 0.45 * dot(n, camera.up);
+            V3 colour = g.albedo * (0.72 * diffuse + 0.38 * sky * ao);
+            if (g.curve) {
+              const V3 half = normalized(key - direction);
+              const double specular = 0.25 * std::pow(std::max(0.0, dot(n, half)), 40);
+              colour = colour + V3{specular, specular, specular};
+            }
+            sum = sum + colour;
+            coverage += 1;
+          }
+          uint8_t* out = &image.rgba[(size_t(y) * o.width + x) * 4];
+          if (o.background.transparent) {
+            // Straight (not premultiplied) alpha, as PNG stores it.
+            const V3 c = coverage > 0 ? sum * (1 / coverage) : V3{};
+            out[0] = to_byte(c.x), out[1] = to_byte(c.y), out[2] = to_byte(c.z);
+            out[3] = uint8_t(std::lround(255 * coverage / o.samples));
+          } else {
+            const V3 c = (sum + background * (o.samples - coverage)) * (1.0 / o.samples);
+            out[0] = to_byte(c.x), out[1] = to_byte(c.y), out[2] = to_byte(c.z), out[3] = 255;
+          }
+        }
+    }
+  });
+  return image;
+}
+
+} // namespace meander
