@@ -354,6 +354,9 @@ Image render(const Scene& scene, const RenderOptions& o) {
   const DeviceHandle device(rtcNewDevice(nullptr));
   if (!device) throw Error("render: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   const SceneHandle rtc(rtcNewScene(device.get()));
+  // Without it, a ray through a shared edge can slip between two triangles and shade the
+  // inside of the far side: a dark speck on a closed surface.
+  rtcSetSceneFlags(rtc.get(), RTC_SCENE_FLAG_ROBUST);
   std::vector<GeometryInfo> info;
   for (const SceneMesh& m : scene.meshes) add_mesh(device.get(), rtc.get(), m, info);
   for (const SceneCurves& k : scene.curves) add_curves(device.get(), rtc.get(), k, float(radius), info);
