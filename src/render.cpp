@@ -236,8 +236,6 @@ public:
     h.position = origin + direction * rh.ray.tfar;
     const GeometryInfo& g = info_[h.geometry];
     V3 n = normalized(V3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-    // A sliver too thin for a float normal (at a sphere's pole) still faces the viewer.
-    if (dot(n, n) == 0) n = direction * -1;
     if (!g.curve && !g.occluder_only) {
       const uint32_t* t = &g.triangles[3 * size_t(rh.hit.primID)];
       const double u = rh.hit.u, v = rh.hit.v;
