@@ -25,7 +25,7 @@ build: deps
 demo: build
 	@mkdir -p out
 	./$(BUILD)/meander generate pretzel --faces 6400 -o out/pretzel.obj
-	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.obj --triangles out/pretzel_cycle.obj --verbose
+	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.obj --triangles out/pretzel_cycle.obj --png out/pretzel.png --verbose
 	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.svg
 	@echo "demo: outputs are in out/"
 
