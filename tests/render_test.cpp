@@ -177,6 +177,15 @@ TEST(RenderCli, RendersAMeshWithItsCurveAndTheCurveCommandRendersToo) {
   const auto made = run_cli({"curve", mesh.string(), "-o", curve.string(), "--png", png.string()});
   ASSERT_EQ(made.exit_code, 0) << made.err;
   EXPECT_EQ(png_size(test::read_file(png)), std::make_pair(1600u, 1200u));
+  const auto small = dir / "small.png";
+  const auto sized = run_cli({"curve", mesh.string(), "-o", curve.string(), "--png", small.string(), "--size", "320x200", "--view", "top"});
+  ASSERT_EQ(sized.exit_code, 0) << sized.err;
+  EXPECT_EQ(png_size(test::read_file(small)), std::make_pair(320u, 200u));
+  // A bad picture option is refused before any work: no curve, no picture.
+  const auto refused = dir / "refused.obj";
+  EXPECT_EQ(run_cli({"curve", mesh.string(), "-o", refused.string(), "--png", (dir / "r.png").string(), "--view", "sideways"}).exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(refused));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.png"));
 
   const auto r = run_cli({"render", curve.string(), "--occluder", mesh.string(), "-o", both.string(), "--size",
                           "200x100", "--view", "top", "--background", "#202020", "--samples", "2"});

@@ -13,7 +13,7 @@ namespace {
 
 struct CurveArgs {
   std::string input, output, triangles, png;
-  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
+  std::string quad = "dual-simplest", tree = "random", smooth = "bspline", view = "iso", size = "1600x1200";
   uint64_t seed = 1;
   int samples = 4;
   bool strict = false, verbose = false;
@@ -26,6 +26,8 @@ void run_curve(const CurveArgs& a) {
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
+  RenderOptions picture{.view = parse_view(a.view)};
+  parse_size(a.size, picture.width, picture.height);
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log);
@@ -46,7 +48,7 @@ void run_curve(const CurveArgs& a) {
     Scene scene;
     scene.meshes.push_back({.mesh = std::move(surface), .color = {0.82f, 0.82f, 0.82f}});
     scene.curves.push_back({.curves = result.curves});
-    write_png(render(scene, {}), a.png);
+    write_png(render(scene, picture), a.png);
     log.lap("render png");
   }
   log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
@@ -54,6 +56,7 @@ void run_curve(const CurveArgs& a) {
   if (!a.triangles.empty())
     log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.num_triangles()) +
              " triangles in cycle order");
+  if (!a.png.empty()) log.note("wrote " + a.png + ": " + std::to_string(picture.width) + "x" + std::to_string(picture.height) + " picture");
 }
 
 } // namespace
@@ -70,6 +73,8 @@ Command add_curve_command(CLI::App& parent) {
   app->add_option("--samples", args->samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
   app->add_option("--png", args->png, "also render the curve on its surface to this picture (.png)");
+  app->add_option("--view", args->view, "view of the --png picture: front, back, left, right, top, iso or AZ,EL in degrees")->capture_default_str();
+  app->add_option("--size", args->size, "size of the --png picture, WIDTHxHEIGHT")->capture_default_str();
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
   return {app, [args] { run_curve(*args); }};
