@@ -32,8 +32,6 @@ void run_curve(const CurveArgs& a) {
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log);
   StageTimes times;
-  // The picture draws the surface under the curve; make_curve consumes the mesh.
-  PolygonMesh surface = a.png.empty() ? PolygonMesh{} : input.mesh;
   const CurveResult result = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
@@ -46,7 +44,9 @@ void run_curve(const CurveArgs& a) {
   }
   if (!a.png.empty()) {
     Scene scene;
-    scene.meshes.push_back({.mesh = std::move(surface), .color = {0.82f, 0.82f, 0.82f}});
+    // The surface drawn is the triangulated quad mesh the curve was built on: on
+    // non-planar polygons a fan of the input faces would cut through the curve.
+    scene.meshes.push_back({.mesh = cycle_triangles(result.quads, result.cycle), .color = {0.82f, 0.82f, 0.82f}});
     scene.curves.push_back({.curves = result.curves});
     write_png(render(scene, picture), a.png);
     log.lap("render png");
