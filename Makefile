@@ -9,7 +9,7 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
                    libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev \
                    libembree-dev libstb-dev
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build demo test bench gallery clean
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -34,6 +34,9 @@ test: build
 
 bench: build
 	bench/run.sh
+
+gallery: build
+	MEANDER=$(BUILD)/meander docs/make_gallery.sh
 
 clean:
 	rm -rf $(BUILD) out
