@@ -34,6 +34,7 @@ namespace {
 struct Adjacency {
   std::vector<int32_t> start;
   std::vector<std::array<int32_t, 2>> adjacent;
+  int32_t degree(int32_t u) const { return start[size_t(u) + 1] - start[size_t(u)]; }
 };
 
 Adjacency build_adjacency(const Graph& g) {
@@ -139,27 +140,25 @@ std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
   std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
   std::vector<int32_t> forest, stack;
   forest.reserve(size_t(g.num_nodes));
+  auto enter = [&](int32_t n) {
+    seen[size_t(n)] = 1;
+    offset[size_t(n)] = int32_t(rng.below(uint32_t(std::max(1, a.degree(n)))));
+    stack.push_back(n);
+  };
   for (int32_t i = 0; i < g.num_nodes; ++i) {
-    const int32_t r = nodes[i];
-    if (seen[size_t(r)]) continue;
-    seen[size_t(r)] = 1;
-    stack.assign(1, r);
-    offset[size_t(r)] = int32_t(rng.below(uint32_t(std::max(1, a.start[size_t(r) + 1] - a.start[size_t(r)]))));
+    if (seen[size_t(nodes[i])]) continue;
+    enter(nodes[i]);
     while (!stack.empty()) {
       const int32_t u = stack.back();
-      const int32_t degree = a.start[size_t(u) + 1] - a.start[size_t(u)];
-      if (scanned[size_t(u)] == degree) {
+      if (scanned[size_t(u)] == a.degree(u)) {
         stack.pop_back();
         continue;
       }
-      const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % degree;
+      const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % a.degree(u);
       const auto [n, e] = a.adjacent[size_t(k)];
       if (seen[size_t(n)]) continue;
-      seen[size_t(n)] = 1;
       forest.push_back(e);
-      const int32_t nd = a.start[size_t(n) + 1] - a.start[size_t(n)];
-      offset[size_t(n)] = int32_t(rng.below(uint32_t(std::max(1, nd))));
-      stack.push_back(n);
+      enter(n);
     }
   }
   return forest;
@@ -188,8 +187,7 @@ std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   forest.reserve(size_t(g.num_nodes));
   for (int32_t s = 0; s < g.num_nodes; ++s) {
     for (int32_t u = s; !in_tree[size_t(u)];) {
-      const int32_t degree = a.start[size_t(u) + 1] - a.start[size_t(u)];
-      const auto [n, e] = a.adjacent[size_t(a.start[size_t(u)] + int32_t(rng.below(uint32_t(degree))))];
+      const auto [n, e] = a.adjacent[size_t(a.start[size_t(u)] + int32_t(rng.below(uint32_t(a.degree(u)))))];
       next_node[size_t(u)] = n;
       next_edge[size_t(u)] = e;
       u = n;
