@@ -2,11 +2,13 @@
 
 #include "meander/check.h"
 #include "meander/io.h"
+#include "meander/printability.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace meander::cli {
 
@@ -15,6 +17,7 @@ namespace {
 struct InfoArgs {
   std::string input;
   bool json = false;
+  bool solid = false;
 };
 
 std::string genus_text(const ComponentReport& c) {
@@ -22,7 +25,7 @@ std::string genus_text(const ComponentReport& c) {
   return c.orientable ? std::to_string(c.genus) : std::to_string(c.genus) + " cross-cap" + (c.genus == 1 ? "" : "s");
 }
 
-void print_json(const std::string& input, const MeshReport& r) {
+void print_json(const std::string& input, const MeshReport& r, const PrintabilityReport* solid) {
   nlohmann::ordered_json j;
   j["file"] = input;
   j["vertices"] = r.vertices;
@@ -58,10 +61,11 @@ void print_json(const std::string& input, const MeshReport& r) {
                      {"orientable", c.orientable},
                      {"genus", c.genus}});
   j["component_details"] = comps;
+  if (solid) j["solid"] = nlohmann::ordered_json::parse(printability_json(*solid));
   std::printf("%s\n", j.dump(2).c_str());
 }
 
-void print_text(const std::string& input, const MeshReport& r) {
+void print_text(const std::string& input, const MeshReport& r, const PrintabilityReport* solid) {
   std::string sizes;
   for (const auto& [size, count] : r.faces_by_size) {
     const char* name = size == 3 ? "triangles" : size == 4 ? "quads" : nullptr;
@@ -89,6 +93,7 @@ void print_text(const std::string& input, const MeshReport& r) {
                 c.faces, c.vertices, c.edges, c.boundary_loops, (long long)c.euler_characteristic,
                 c.orientable ? "orientable" : "non-orientable", genus_text(c).c_str());
   }
+  if (solid) std::printf("solid                  %s\n", printability_summary(*solid).c_str());
 }
 
 } // namespace
@@ -98,10 +103,15 @@ Command add_info_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("info", "Describe a mesh: counts, topology per component, and every problem found");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
   app->add_flag("--json", args->json, "print JSON instead of text");
+  app->add_flag("--solid", args->solid,
+                "also check it as a solid to 3D-print: watertight, volume, self-intersections, minimum thickness");
   return {app, [args] {
-            const MeshReport report = inspect(read_mesh(args->input));
-            if (args->json) print_json(args->input, report);
-            else print_text(args->input, report);
+            const PolygonMesh mesh = read_mesh(args->input);
+            const MeshReport report = inspect(mesh);
+            std::optional<PrintabilityReport> solid;
+            if (args->solid) solid = check_printability(mesh);
+            if (args->json) print_json(args->input, report, solid ? &*solid : nullptr);
+            else print_text(args->input, report, solid ? &*solid : nullptr);
           }};
 }
 

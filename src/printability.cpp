@@ -1,0 +1,532 @@
+#include "meander/printability.h"
+
+#include "io/atomic_file.h"
+#include "meander/check.h"
+#include "meander/connectivity.h"
+#include "meander/error.h"
+#include "triangle_bvh.h"
+#include "union_find.h"
+
+#include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+
+namespace meander {
+namespace {
+
+// Geometry in double: float inputs promote exactly, and differences of floats of
+// similar magnitude stay exact, so the signs below are exact for the small-integer and
+// axis-aligned configurations where ties matter (shared planes, touching corners) and
+// correct elsewhere unless a point lies within ~1e-16 relative of a plane.
+struct P3 {
+  double x, y, z;
+};
+P3 to_p3(Vec3 v) { return {v.x, v.y, v.z}; }
+P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+int sign(double v) { return (v > 0) - (v < 0); }
+
+// +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to.
+int orient3d(P3 a, P3 b, P3 c, P3 d) { return sign(dot(cross(b - a, c - a), d - a)); }
+
+// The axis along which the normal of (a, b, c) is largest: dropping it projects the
+// triangle's plane onto a coordinate plane without collapsing it.
+int dominant_axis(P3 a, P3 b, P3 c) {
+  const P3 n = cross(b - a, c - a);
+  const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
+  return x >= y && x >= z ? 0 : y >= z ? 1 : 2;
+}
+
+// Orientation of a, b, c projected along `axis` (the other two axes in cyclic order).
+int orient2d(P3 a, P3 b, P3 c, int axis) {
+  const auto uv = [axis](P3 p) {
+    return axis == 0 ? std::pair{p.y, p.z} : axis == 1 ? std::pair{p.z, p.x} : std::pair{p.x, p.y};
+  };
+  const auto [ax, ay] = uv(a);
+  const auto [bx, by] = uv(b);
+  const auto [cx, cy] = uv(c);
+  return sign((bx - ax) * (cy - ay) - (by - ay) * (cx - ax));
+}
+
+// Closed segments ab and cd, in one plane projected along `axis`.
+bool segments_meet_2d(P3 a, P3 b, P3 c, P3 d, int axis) {
+  const int o1 = orient2d(a, b, c, axis), o2 = orient2d(a, b, d, axis);
+  const int o3 = orient2d(c, d, a, axis), o4 = orient2d(c, d, b, axis);
+  if (o1 * o2 > 0 || o3 * o4 > 0) return false;
+  if (o1 != 0 || o2 != 0) return true;
+  // Collinear: overlap along the coordinate in which the line varies most.
+  const P3 e = b - a;
+  const double ex = std::abs(e.x), ey = std::abs(e.y), ez = std::abs(e.z);
+  const auto coordinate = [&](P3 p) { return ex >= ey && ex >= ez ? p.x : ey >= ez ? p.y : p.z; };
+  const double a1 = coordinate(a), b1 = coordinate(b), c1 = coordinate(c), d1 = coordinate(d);
+  return std::min(a1, b1) <= std::max(c1, d1) && std::min(c1, d1) <= std::max(a1, b1);
+}
+
+// p in the closed triangle abc (not degenerate), all in one plane projected along `axis`.
+bool inside_triangle_2d(P3 p, P3 a, P3 b, P3 c, int axis) {
+  const int o1 = orient2d(a, b, p, axis), o2 = orient2d(b, c, p, axis), o3 = orient2d(c, a, p, axis);
+  return !((o1 < 0 || o2 < 0 || o3 < 0) && (o1 > 0 || o2 > 0 || o3 > 0));
+}
+
+// The closed segment st meets the closed triangle abc (not degenerate).
+bool segment_meets_triangle(P3 s, P3 t, P3 a, P3 b, P3 c) {
+  const int ds = orient3d(a, b, c, s), dt = orient3d(a, b, c, t);
+  if (ds * dt > 0) return false;
+  if (ds == 0 && dt == 0) {
+    const int axis = dominant_axis(a, b, c);
+    return inside_triangle_2d(s, a, b, c, axis) || segments_meet_2d(s, t, a, b, axis) ||
+           segments_meet_2d(s, t, b, c, axis) || segments_meet_2d(s, t, c, a, axis);
+  }
+  // The segment reaches the plane; it does so inside the triangle iff the line st passes
+  // on the same side of (or through) all three edges.
+  const int o1 = orient3d(s, t, a, b), o2 = orient3d(s, t, b, c), o3 = orient3d(s, t, c, a);
+  return !((o1 < 0 || o2 < 0 || o3 < 0) && (o1 > 0 || o2 > 0 || o3 > 0));
+}
+
+// Two closed triangles with no vertex in common meet. Where they meet, the meeting set
+// is convex and its extreme points lie on edges, so some edge of one meets the other:
+// six segment tests after the cheap rejection by the planes.
+bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
+  const int a0 = orient3d(u[0], u[1], u[2], t[0]), a1 = orient3d(u[0], u[1], u[2], t[1]),
+            a2 = orient3d(u[0], u[1], u[2], t[2]);
+  if (a0 == a1 && a1 == a2 && a0 != 0) return false;
+  const int b0 = orient3d(t[0], t[1], t[2], u[0]), b1 = orient3d(t[0], t[1], t[2], u[1]),
+            b2 = orient3d(t[0], t[1], t[2], u[2]);
+  if (b0 == b1 && b1 == b2 && b0 != 0) return false;
+  for (int k = 0; k < 3; ++k)
+    if (segment_meets_triangle(t[k], t[(k + 1) % 3], u[0], u[1], u[2]) ||
+        segment_meets_triangle(u[k], u[(k + 1) % 3], t[0], t[1], t[2]))
+      return true;
+  return false;
+}
+
+// Direction a - v lies in the closed wedge of triangle (v, c, d) at v, a in its plane.
+bool in_wedge(P3 v, P3 a, P3 c, P3 d) {
+  if (orient3d(v, c, d, a) != 0) return false;
+  const int axis = dominant_axis(v, c, d);
+  const int s = orient2d(v, c, d, axis);
+  return orient2d(v, c, a, axis) * s >= 0 && orient2d(v, a, d, axis) * s >= 0;
+}
+
+// Triangles (v, a, b) and (v, c, d) that share only v meet elsewhere. Near v each
+// coincides with its wedge, so they meet beyond v iff an edge meets the other triangle
+// away from v: the far edges ab and cd anywhere, an edge through v only when it lies in
+// the other's plane and inside its wedge.
+bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
+  return segment_meets_triangle(a, b, v, c, d) || segment_meets_triangle(c, d, v, a, b) || in_wedge(v, a, c, d) ||
+         in_wedge(v, b, c, d) || in_wedge(v, c, a, b) || in_wedge(v, d, a, b);
+}
+
+// Triangles (u, w, a) and (u, w, b) sharing the edge uw meet beyond it iff they fold
+// onto each other: two planes through uw meet only in its line, so only coplanar
+// triangles on the same side of uw overlap.
+bool fold_over_edge(P3 u, P3 w, P3 a, P3 b) {
+  if (orient3d(u, w, a, b) != 0) return false;
+  const int axis = dominant_axis(u, w, a);
+  return orient2d(u, w, a, axis) == orient2d(u, w, b, axis);
+}
+
+struct Triangles {
+  std::vector<std::array<int32_t, 3>> corners;
+  std::vector<int32_t> face; // the input polygon each triangle comes from
+};
+
+Triangles fan(const PolygonMesh& mesh) {
+  Triangles t;
+  const size_t count = size_t(std::max<int64_t>(0, int64_t(mesh.num_corners()) - 2 * int64_t(mesh.num_faces())));
+  t.corners.reserve(count);
+  t.face.reserve(count);
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::span<const int32_t> v = mesh.face(f);
+    for (size_t k = 1; k + 1 < v.size(); ++k) {
+      t.corners.push_back({v[0], v[k], v[k + 1]});
+      t.face.push_back(f);
+    }
+  }
+  return t;
+}
+
+// Whether triangles i and j (of different polygons, boxes overlapping) meet where the
+// mesh does not join them.
+bool intersect(const PolygonMesh& mesh, const Triangles& tris, int32_t i, int32_t j) {
+  const std::array<int32_t, 3>& t = tris.corners[size_t(i)];
+  const std::array<int32_t, 3>& u = tris.corners[size_t(j)];
+  int shared = 0, ti[3], ui[3]; // positions in t and u of the shared vertices
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (t[a] == u[b]) {
+        ti[shared] = a;
+        ui[shared] = b;
+        ++shared;
+      }
+  const auto p = [&](int32_t v) { return to_p3(mesh.positions[size_t(v)]); };
+  if (shared == 0)
+    return triangles_meet({p(t[0]), p(t[1]), p(t[2])}, {p(u[0]), p(u[1]), p(u[2])});
+  if (shared == 1) {
+    const int a = ti[0], b = ui[0];
+    return meet_beyond_vertex(p(t[a]), p(t[(a + 1) % 3]), p(t[(a + 2) % 3]), p(u[(b + 1) % 3]), p(u[(b + 2) % 3]));
+  }
+  if (shared == 2) {
+    const int ta = 3 - ti[0] - ti[1], ua = 3 - ui[0] - ui[1]; // the unshared vertices
+    return fold_over_edge(p(t[ti[0]]), p(t[ti[1]]), p(t[ta]), p(u[ua]));
+  }
+  return true; // the same three vertices: one lies on the other
+}
+
+bool degenerate(const PolygonMesh& mesh, const std::array<int32_t, 3>& t) {
+  const P3 a = to_p3(mesh.positions[size_t(t[0])]), b = to_p3(mesh.positions[size_t(t[1])]),
+           c = to_p3(mesh.positions[size_t(t[2])]);
+  const P3 n = cross(b - a, c - a);
+  return n.x == 0 && n.y == 0 && n.z == 0;
+}
+
+std::vector<TriangleBvh::Box> triangle_boxes(const PolygonMesh& mesh, const Triangles& tris) {
+  std::vector<TriangleBvh::Box> boxes(tris.corners.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      TriangleBvh::Box& b = boxes[i];
+      for (int32_t v : tris.corners[i]) b.extend(mesh.positions[size_t(v)]);
+    }
+  });
+  return boxes;
+}
+
+// The first intersecting pair in the order of PrintabilityReport::first_intersection.
+// Triangles are visited in parallel; each one past the best found so far is skipped, and
+// each one visited looks at all its candidates, so the answer does not depend on timing.
+std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Triangles& tris,
+                                               const std::vector<uint8_t>& skip, const TriangleBvh& bvh,
+                                               const std::vector<TriangleBvh::Box>& boxes) {
+  const int32_t n = int32_t(tris.corners.size());
+  std::atomic<int32_t> best{n};
+  std::mutex found_lock;
+  std::vector<std::array<int32_t, 2>> found;
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 256), [&](const tbb::blocked_range<int32_t>& r) {
+    for (int32_t i = r.begin(); i < r.end(); ++i) {
+      if (i >= best.load(std::memory_order_relaxed)) return;
+      if (skip[size_t(i)]) continue;
+      int32_t partner = n;
+      bvh.for_each_overlap(boxes[size_t(i)], [&](int32_t j) {
+        if (j <= i || j >= partner || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)] ||
+            !boxes[size_t(i)].overlaps(boxes[size_t(j)]))
+          return;
+        if (intersect(mesh, tris, i, j)) partner = j;
+      });
+      if (partner == n) continue;
+      int32_t current = best.load();
+      while (i < current && !best.compare_exchange_weak(current, i)) {
+      }
+      const std::lock_guard lock(found_lock);
+      found.push_back({i, partner});
+      return;
+    }
+  });
+  if (found.empty()) return {-1, -1};
+  const std::array<int32_t, 2> first = *std::min_element(found.begin(), found.end());
+  return {tris.face[size_t(first[0])], tris.face[size_t(first[1])]};
+}
+
+// Components of the faces joined across edges (shared by any number of faces), numbered
+// by their first face, with V - E + F, closedness and signed volume.
+std::vector<int32_t> label_components(const PolygonMesh& mesh, const Connectivity& c, int32_t& count) {
+  UnionFind sets(mesh.num_faces());
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    const std::span<const int32_t> hs = c.halfedges(e);
+    for (size_t k = 1; k < hs.size(); ++k) sets.unite(c.halfedge_face[size_t(hs[0])], c.halfedge_face[size_t(hs[k])]);
+  }
+  std::vector<int32_t> label(size_t(mesh.num_faces())), number(size_t(mesh.num_faces()), -1);
+  count = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    int32_t& id = number[size_t(sets.find(f))];
+    if (id < 0) id = count++;
+    label[size_t(f)] = id;
+  }
+  return label;
+}
+
+// Fills report.components and report.volume; returns the component of each input face
+// (-1 for a face that repeats a vertex).
+std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles& tris, PrintabilityReport& report) {
+  // Faces that repeat a vertex have no place in an edge structure; they are not part of
+  // a watertight mesh anyway (inspect() counts them), so they are left out here.
+  PolygonMesh polygons;
+  polygons.positions = mesh.positions;
+  std::vector<int32_t> original; // face of `mesh` for each face of `polygons`
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::span<const int32_t> v = mesh.face(f);
+    std::vector<int32_t> sorted(v.begin(), v.end());
+    std::sort(sorted.begin(), sorted.end());
+    if (v.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+    polygons.add_face(v);
+    original.push_back(f);
+  }
+  const Connectivity c = build_connectivity(polygons);
+  int32_t count = 0;
+  const std::vector<int32_t> label = label_components(polygons, c, count);
+  std::vector<SolidComponent>& components = report.components;
+  components.assign(size_t(count), SolidComponent{});
+  for (auto& k : components) k.closed = true;
+  for (int32_t f = 0; f < polygons.num_faces(); ++f) ++components[size_t(label[size_t(f)])].faces;
+  for (int32_t e = 0; e < c.num_edges(); ++e) {
+    SolidComponent& k = components[size_t(label[size_t(c.halfedge_face[size_t(c.halfedges(e)[0])])])];
+    --k.euler_characteristic;
+    if (c.edge_degree(e) == 1) k.closed = false;
+  }
+  // Vertices: once per component they belong to. Nearly every vertex is in one; those
+  // met again from another component are sorted out apart.
+  std::vector<int32_t> first_component(size_t(mesh.num_vertices()), -1);
+  std::vector<std::pair<int32_t, int32_t>> shared;
+  for (int32_t f = 0; f < polygons.num_faces(); ++f)
+    for (const int32_t v : polygons.face(f)) {
+      int32_t& first = first_component[size_t(v)];
+      if (first < 0) first = label[size_t(f)];
+      else if (first != label[size_t(f)]) shared.emplace_back(v, label[size_t(f)]);
+    }
+  std::sort(shared.begin(), shared.end());
+  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+  for (const int32_t k : first_component)
+    if (k >= 0) ++components[size_t(k)].euler_characteristic;
+  for (const auto& [v, k] : shared) ++components[size_t(k)].euler_characteristic;
+  for (SolidComponent& k : components) k.euler_characteristic += k.faces;
+
+  // Volume: the divergence theorem over the fan triangles, each the signed volume of its
+  // tetrahedron with the origin. Relative to a point near the mesh (the box's centre) to
+  // keep the terms small when the model sits far from the origin.
+  std::vector<int32_t> component_of_face(size_t(mesh.num_faces()), -1);
+  for (int32_t f = 0; f < polygons.num_faces(); ++f) component_of_face[size_t(original[size_t(f)])] = label[size_t(f)];
+  const Box3& box = report.bounding_box;
+  const P3 centre = box.empty() ? P3{0, 0, 0} : to_p3((box.min + box.max) * 0.5f);
+  for (size_t i = 0; i < tris.corners.size(); ++i) {
+    const int32_t k = component_of_face[size_t(tris.face[i])];
+    if (k < 0) continue;
+    const std::array<int32_t, 3>& t = tris.corners[i];
+    const P3 a = to_p3(mesh.positions[size_t(t[0])]) - centre, b = to_p3(mesh.positions[size_t(t[1])]) - centre,
+             cc = to_p3(mesh.positions[size_t(t[2])]) - centre;
+    components[size_t(k)].volume += dot(a, cross(b, cc)) / 6;
+  }
+  for (const SolidComponent& k : components) report.volume += k.volume;
+  return component_of_face;
+}
+
+// `inward` per face: -1 to cast against the normals (a component of positive volume),
+// +1 along them (one turned inside out), 0 to cast no ray from its vertices. Rays are
+// tested against triangles by Möller-Trumbore in double.
+void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const TriangleBvh& bvh,
+                   const std::vector<int32_t>& inward, PrintabilityReport& report) {
+  const int32_t nv = mesh.num_vertices();
+  std::vector<P3> normal(size_t(nv), P3{0, 0, 0});
+  std::vector<int32_t> vertex_side(size_t(nv), 0);
+  for (size_t i = 0; i < tris.corners.size(); ++i) {
+    const std::array<int32_t, 3>& t = tris.corners[i];
+    const P3 a = to_p3(mesh.positions[size_t(t[0])]), b = to_p3(mesh.positions[size_t(t[1])]),
+             c = to_p3(mesh.positions[size_t(t[2])]);
+    P3 n = cross(b - a, c - a);
+    const double length = std::sqrt(dot(n, n));
+    if (length == 0) continue;
+    n = {n.x / length, n.y / length, n.z / length};
+    // Weighted by the corner angle, so that the normal does not depend on how the faces
+    // around the vertex are triangulated (a cube's corner gets its diagonal).
+    const P3 corner[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const P3 e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
+      const double angle = std::atan2(std::sqrt(dot(cross(e1, e2), cross(e1, e2))), dot(e1, e2));
+      P3& s = normal[size_t(t[size_t(k)])];
+      s = {s.x + angle * n.x, s.y + angle * n.y, s.z + angle * n.z};
+      vertex_side[size_t(t[size_t(k)])] = inward[size_t(tris.face[i])];
+    }
+  }
+  std::vector<double> thickness(size_t(nv), INFINITY);
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nv, 1024), [&](const tbb::blocked_range<int32_t>& r) {
+    for (int32_t v = r.begin(); v < r.end(); ++v) {
+      const int32_t side = vertex_side[size_t(v)];
+      const P3 n = normal[size_t(v)];
+      const double length = std::sqrt(dot(n, n));
+      if (side == 0 || length == 0) continue;
+      const double scale = side / length;
+      const P3 origin = to_p3(mesh.positions[size_t(v)]);
+      const P3 direction{n.x * scale, n.y * scale, n.z * scale};
+      thickness[size_t(v)] = bvh.cast(origin, direction, [&](int32_t i, double t_max) {
+        const std::array<int32_t, 3>& t = tris.corners[size_t(i)];
+        if (t[0] == v || t[1] == v || t[2] == v) return t_max;
+        const P3 a = to_p3(mesh.positions[size_t(t[0])]);
+        const P3 e1 = to_p3(mesh.positions[size_t(t[1])]) - a, e2 = to_p3(mesh.positions[size_t(t[2])]) - a;
+        const P3 h = cross(direction, e2);
+        const double det = dot(e1, h);
+        if (det == 0) return t_max;
+        const double inv = 1 / det;
+        const P3 s = origin - a;
+        const double u = dot(s, h) * inv;
+        if (u < 0 || u > 1) return t_max;
+        const P3 q = cross(s, e1);
+        const double w = dot(direction, q) * inv;
+        if (w < 0 || u + w > 1) return t_max;
+        const double t_hit = dot(e2, q) * inv;
+        return t_hit > 0 && t_hit < t_max ? t_hit : t_max;
+      });
+    }
+  });
+  for (int32_t v = 0; v < nv; ++v)
+    if (thickness[size_t(v)] < report.min_thickness) {
+      report.min_thickness = thickness[size_t(v)];
+      report.thinnest_vertex = v;
+    }
+}
+
+} // namespace
+
+bool PrintabilityReport::printable() const {
+  return watertight && !self_intersecting &&
+         std::all_of(components.begin(), components.end(), [](const SolidComponent& k) { return k.volume > 0; });
+}
+
+PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options) {
+  const MeshReport topology = inspect(mesh);
+  if (topology.out_of_range_indices > 0)
+    throw InputError("mesh has " + std::to_string(topology.out_of_range_indices) + " face indices out of range");
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    for (const int32_t v : mesh.face(f))
+      if (!is_finite(mesh.positions[size_t(v)]))
+        throw InputError("mesh: vertex " + std::to_string(v) + " (used by face " + std::to_string(f) +
+                         ") has a non-finite position");
+  PrintabilityReport report;
+  report.vertices = mesh.num_vertices();
+  report.faces = mesh.num_faces();
+  report.boundary_edges = topology.boundary_edges;
+  report.non_manifold_edges = topology.non_manifold_edges;
+  report.non_manifold_vertices = topology.non_manifold_vertices;
+  report.misoriented_edges = topology.misoriented_edges;
+  report.orientable = topology.orientable;
+  report.bounding_box = topology.bounding_box;
+  report.watertight = mesh.num_faces() > 0 && topology.boundary_edges == 0 && topology.non_manifold_edges == 0 &&
+                      topology.non_manifold_vertices == 0 && topology.misoriented_edges == 0 &&
+                      topology.orientable && topology.degenerate_faces == 0;
+
+  const Triangles tris = fan(mesh);
+  report.triangles = int64_t(tris.corners.size());
+  const std::vector<int32_t> component = measure_components(mesh, tris, report);
+
+  std::vector<uint8_t> skip(tris.corners.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) skip[i] = degenerate(mesh, tris.corners[i]);
+  });
+  report.degenerate_triangles = int32_t(std::count(skip.begin(), skip.end(), 1));
+  if (!options.self_intersections && !options.thickness) return report;
+
+  const std::vector<TriangleBvh::Box> boxes = triangle_boxes(mesh, tris);
+  const TriangleBvh bvh(boxes);
+  if (options.self_intersections) {
+    report.self_intersections_checked = true;
+    report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh, boxes);
+    report.self_intersecting = report.first_intersection[0] >= 0;
+  }
+  if (options.thickness && report.boundary_edges == 0 && !report.components.empty()) {
+    report.thickness_checked = true;
+    std::vector<int32_t> inward(size_t(mesh.num_faces()), 0);
+    for (int32_t f = 0; f < mesh.num_faces(); ++f)
+      if (const int32_t k = component[size_t(f)]; k >= 0) inward[size_t(f)] = -sign(report.components[size_t(k)].volume);
+    min_thickness(mesh, tris, bvh, inward, report);
+  }
+  return report;
+}
+
+std::string printability_json(const PrintabilityReport& r) {
+  using Json = nlohmann::ordered_json;
+  const auto finite_or_null = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  const auto point = [](Vec3 p) { return Json::array({p.x, p.y, p.z}); };
+  Json j;
+  j["printable"] = r.printable();
+  j["vertices"] = r.vertices;
+  j["faces"] = r.faces;
+  j["triangles"] = r.triangles;
+  j["degenerate_triangles"] = r.degenerate_triangles;
+  j["watertight"] = r.watertight;
+  j["boundary_edges"] = r.boundary_edges;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["misoriented_edges"] = r.misoriented_edges;
+  j["orientable"] = r.orientable;
+  j["volume"] = r.volume;
+  j["self_intersecting"] = r.self_intersections_checked ? Json(r.self_intersecting) : Json(nullptr);
+  j["first_intersection"] =
+      r.self_intersecting ? Json::array({r.first_intersection[0], r.first_intersection[1]}) : Json(nullptr);
+  j["min_thickness"] = r.thickness_checked ? finite_or_null(r.min_thickness) : Json(nullptr);
+  j["thinnest_vertex"] = r.thinnest_vertex >= 0 ? Json(r.thinnest_vertex) : Json(nullptr);
+  j["bounding_box"] = r.bounding_box.empty() ? Json(nullptr)
+                                             : Json{{"min", point(r.bounding_box.min)}, {"max", point(r.bounding_box.max)}};
+  Json components = Json::array();
+  for (const SolidComponent& k : r.components)
+    components.push_back({{"faces", k.faces},
+                          {"euler_characteristic", k.euler_characteristic},
+                          {"closed", k.closed},
+                          {"volume", k.volume}});
+  j["components"] = components;
+  return j.dump(2);
+}
+
+std::string printability_summary(const PrintabilityReport& r) {
+  char text[256];
+  std::string s = std::to_string(r.triangles) + (r.triangles == 1 ? " triangle, " : " triangles, ");
+  if (r.watertight) {
+    s += "watertight";
+  } else {
+    std::string problems;
+    const auto add = [&](int64_t n, const char* what) {
+      if (n > 0) problems += (problems.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    add(r.boundary_edges, "boundary edges");
+    add(r.non_manifold_edges, "non-manifold edges");
+    add(r.non_manifold_vertices, "non-manifold vertices");
+    add(r.misoriented_edges, "misoriented edges");
+    if (!r.orientable) problems += std::string(problems.empty() ? "" : ", ") + "not orientable";
+    s += "not watertight" + (problems.empty() ? std::string() : " (" + problems + ")");
+  }
+  s += ", " + std::to_string(r.components.size()) + (r.components.size() == 1 ? " component" : " components");
+  if (!r.components.empty()) {
+    s += " (Euler characteristic";
+    for (size_t k = 0; k < r.components.size() && k < 8; ++k) {
+      s += ' ';
+      s += std::to_string(r.components[k].euler_characteristic);
+    }
+    s += r.components.size() > 8 ? " ...)" : ")";
+  }
+  const bool outward = std::all_of(r.components.begin(), r.components.end(), [](const SolidComponent& k) { return k.volume > 0; });
+  std::snprintf(text, sizeof text, ", volume %.6g (%s)", r.volume, outward ? "outward" : "some component inside out or empty");
+  s += text;
+  if (!r.self_intersections_checked) s += ", self-intersection not checked";
+  else if (!r.self_intersecting) s += ", no self-intersection";
+  else
+    s += ", self-intersecting (first: faces " + std::to_string(r.first_intersection[0]) + " and " +
+         std::to_string(r.first_intersection[1]) + ")";
+  if (!r.thickness_checked) {
+    s += ", thickness not measured (open mesh)";
+  } else if (std::isfinite(r.min_thickness)) {
+    std::snprintf(text, sizeof text, ", minimum thickness %.4g (at vertex %d)", r.min_thickness, r.thinnest_vertex);
+    s += text;
+  }
+  if (!r.bounding_box.empty()) {
+    const Box3& b = r.bounding_box;
+    std::snprintf(text, sizeof text, ", bounding box %.4g x %.4g x %.4g from (%.4g, %.4g, %.4g)", double(b.max.x - b.min.x),
+                  double(b.max.y - b.min.y), double(b.max.z - b.min.z), double(b.min.x), double(b.min.y),
+                  double(b.min.z));
+    s += text;
+  }
+  s += r.printable() ? ": printable." : ": not printable.";
+  return s;
+}
+
+void write_printability_report(const PrintabilityReport& report, const std::filesystem::path& path) {
+  io::AtomicFile out(path);
+  out.text(printability_json(report));
+  out.put('\n');
+  out.commit();
+}
+
+} // namespace meander
