@@ -21,7 +21,7 @@
 
 namespace meander {
 
-enum class MeshFormat { obj, ply, stl, off };
+enum class MeshFormat { obj, ply, stl, off, threemf };
 
 // The format for a path's extension; throws UsageError naming the path if unknown.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
@@ -63,8 +63,11 @@ struct MeshWriteOptions {
 
 // Writes a polygon mesh: OBJ (v, f), PLY (vertex float x,y,z; face list uchar int, or
 // uint int if a face has more than 255 vertices), STL (triangles with computed normals;
-// polygons are fanned from their first vertex), OFF. Floats are written in text as the
-// shortest decimal that reads back to the same float. Face indices must be in range.
+// polygons are fanned from their first vertex), OFF, 3MF (through lib3mf: one mesh object
+// of the triangles fanned from each polygon's first vertex, triangles that repeat a vertex
+// left out, coordinates rounded to 6 decimals, unit millimetre, one build item; 3MF is
+// written only: reading it is a UsageError). Floats are written in text as the shortest
+// decimal that reads back to the same float. Face indices must be in range.
 // Atomic: no partial file is left.
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 

@@ -25,6 +25,9 @@ void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicF
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_off(const PolygonMesh& mesh, AtomicFile& out);
+// `name` stands for the file in lib3mf's error messages. Coordinates are rounded to 6
+// decimals (lib3mf's format: a micrometre, the unit being the millimetre).
+void write_3mf(const PolygonMesh& mesh, std::string_view name, AtomicFile& out);
 
 // "x y z\n": a point as OBJ, OFF and ascii PLY write it.
 inline void write_point_line(AtomicFile& out, Vec3 p) {

@@ -71,7 +71,9 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   if (extension == ".ply") return MeshFormat::ply;
   if (extension == ".stl") return MeshFormat::stl;
   if (extension == ".off") return MeshFormat::off;
-  throw UsageError(path.string() + ": unknown mesh format '" + extension + "' (expected .obj, .ply, .stl or .off)");
+  if (extension == ".3mf") return MeshFormat::threemf;
+  throw UsageError(path.string() + ": unknown mesh format '" + extension +
+                   "' (expected .obj, .ply, .stl, .off or .3mf)");
 }
 
 PolygonMesh read_mesh(const std::filesystem::path& path) {
@@ -87,7 +89,10 @@ PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_vie
   case MeshFormat::ply: return io::read_ply(bytes, name);
   case MeshFormat::stl: return io::read_stl(bytes, name);
   case MeshFormat::off: return io::read_off(bytes, name);
+  case MeshFormat::threemf: break;
   }
+  if (format == MeshFormat::threemf)
+    throw UsageError(std::string(name) + ": reading .3mf is not supported (Meander writes 3MF only)");
   throw UsageError(std::string(name) + ": unknown mesh format");
 }
 
@@ -112,6 +117,7 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
   case MeshFormat::ply: io::write_ply(mesh, options, out); break;
   case MeshFormat::stl: io::write_stl(mesh, options, out); break;
   case MeshFormat::off: io::write_off(mesh, out); break;
+  case MeshFormat::threemf: io::write_3mf(mesh, path.string(), out); break;
   }
   out.commit();
 }
