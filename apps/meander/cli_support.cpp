@@ -24,6 +24,20 @@ void require_output_path(const std::filesystem::path& path, std::initializer_lis
     throw IOError(path.string() + ": cannot write: folder '" + folder.string() + "' does not exist");
 }
 
+void add_curve_flags(CLI::App& app, CurveFlags& flags) {
+  app.add_option("--quad", flags.quad, "quadrangulation")->check(CLI::IsMember({"dual-simplest", "catmull-clark", "none"}))->capture_default_str();
+  app.add_option("--tree", flags.tree, "spanning tree strategy: the style of the meander")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
+  app.add_option("--seed", flags.seed, "random seed (same seed, same output)")->capture_default_str();
+  app.add_option("--smooth", flags.smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
+  app.add_option("--samples", flags.samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
+}
+
+CurveJob curve_job(const CurveFlags& flags) {
+  return {.quadrangulation = parse_quadrangulation(flags.quad),
+          .cycle = {.tree = parse_tree_strategy(flags.tree), .seed = flags.seed},
+          .curve = {.smoothing = parse_smoothing(flags.smooth), .samples = flags.samples}};
+}
+
 void StageLog::lap(std::string_view stage) {
   const auto now = std::chrono::steady_clock::now();
   add(stage, std::chrono::duration<double>(now - start_).count());

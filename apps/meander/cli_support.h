@@ -2,6 +2,9 @@
 #pragma once
 
 #include "meander/check.h"
+#include "meander/pipeline.h"
+
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -15,6 +18,16 @@ namespace meander::cli {
 // folder exists, so a long run does not end in a refusal. Throws UsageError / IOError.
 void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
                          std::string_view option);
+
+// The options every command that builds the curve takes: --quad --tree --seed --smooth
+// --samples, as `meander curve` defines them.
+struct CurveFlags {
+  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
+  uint64_t seed = 1;
+  int samples = 4;
+};
+void add_curve_flags(CLI::App& app, CurveFlags& flags);
+CurveJob curve_job(const CurveFlags& flags);
 
 // Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
 // each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.

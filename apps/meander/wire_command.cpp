@@ -1,0 +1,114 @@
+#include "cli_support.h"
+#include "commands.h"
+
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/printability.h"
+#include "meander/render.h"
+#include "meander/wire.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+namespace meander::cli {
+
+namespace {
+
+struct WireArgs {
+  std::string input, output, report, png;
+  std::string method = "constant", shape = "wire", radius = "auto", view = "iso", size = "1600x1200";
+  CurveFlags curve;
+  int sides = 8, levels = 2;
+  double s = 0.6, t = 0.6, thickness = 0;
+  bool strict = false, verbose = false;
+};
+
+// "auto" (0) or a positive number.
+double parse_radius(const std::string& text) {
+  if (text == "auto") return 0;
+  double r = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), r);
+  if (ec != std::errc() || end != text.data() + text.size() || !(r > 0) || !std::isfinite(r))
+    throw UsageError("--radius '" + text + "': expected a positive number or auto");
+  return r;
+}
+
+void run_wire(const WireArgs& a) {
+  const CurveJob job = curve_job(a.curve);
+  const bool constant = a.method == "constant";
+  const WireShape shape = parse_wire_shape(a.shape);
+  double radius = parse_radius(a.radius);
+  const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
+  require_output_path(a.output, {".stl", ".ply", ".obj", ".off"}, "-o");
+  if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
+  if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
+  RenderOptions picture{.view = parse_view(a.view)};
+  parse_size(a.size, picture.width, picture.height);
+
+  StageLog log(a.verbose);
+  RepairResult input = read_and_repair(a.input, a.strict, log);
+  StageTimes times;
+  const CurveResult curve = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
+  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.restart();
+
+  PolygonMesh wire;
+  if (constant) {
+    if (radius == 0) {
+      radius = max_wire_radius(curve.curves, job.curve.smoothing == Smoothing::none ? 1 : job.curve.samples);
+      log.lap("radius");
+      if (!(radius > 0)) throw TopologyError(a.input + ": the curve touches itself: no wire radius avoids a self-intersection");
+    }
+    wire = constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
+  } else {
+    wire = variable_wire(curve.quads, curve.cycle, variable);
+  }
+  log.lap("wire");
+
+  const PrintabilityReport report = check_printability(wire, {.thickness = shape == WireShape::wire});
+  log.lap("report");
+  write_mesh(wire, a.output);
+  log.lap("write wire");
+  if (!a.report.empty()) write_printability_report(report, a.report);
+  if (!a.png.empty()) {
+    Scene scene;
+    scene.meshes.push_back({.mesh = std::move(wire), .color = {0.72f, 0.45f, 0.2f}});
+    write_png(render(scene, picture), a.png);
+    log.lap("render png");
+  }
+  std::string summary = a.output + ": " + printability_summary(report);
+  if (constant) summary += " Radius " + std::to_string(radius) + (a.radius == "auto" ? " (auto)." : ".");
+  std::fprintf(stderr, "%s\n", summary.c_str());
+}
+
+} // namespace
+
+Command add_wire_command(CLI::App& parent) {
+  auto args = std::make_shared<WireArgs>();
+  CLI::App* app = parent.add_subcommand("wire", "Make a wire or ribbon sculpture from the surface-covering curve (3D-printable)");
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_option("-o,--output", args->output, "output mesh: .stl, .ply (binary), .obj, .off")->required();
+  app->add_option("--method", args->method, "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
+                                            "inside the cycle's triangles, smoothed by Catmull-Clark")
+      ->check(CLI::IsMember({"constant", "variable"}))->capture_default_str();
+  app->add_option("--shape", args->shape, "wire (closed tube) or ribbon (band on the surface)")->check(CLI::IsMember({"wire", "ribbon"}))->capture_default_str();
+  add_curve_flags(*app, args->curve);
+  app->add_option("--radius", args->radius, "constant: tube radius or half the ribbon width in mesh units, or auto: the "
+                                            "largest that does not self-intersect")->capture_default_str();
+  app->add_option("--sides", args->sides, "constant wire: sides of the swept polygon")->check(CLI::Range(3, 64))->capture_default_str();
+  app->add_option("--s", args->s, "variable: trapezoid size across the curve, 0..1 (1 covers the surface)")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  app->add_option("--t", args->t, "variable: trapezoid size along the curve, 0..1")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the median ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
+  app->add_option("--report", args->report, "also write the printability report (.json)");
+  app->add_option("--png", args->png, "also render the wire to this picture (.png)");
+  app->add_option("--view", args->view, "view of the --png picture: front, back, left, right, top, iso or AZ,EL in degrees")->capture_default_str();
+  app->add_option("--size", args->size, "size of the --png picture, WIDTHxHEIGHT")->capture_default_str();
+  app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
+  app->add_flag("-v,--verbose", args->verbose, "print the time each stage took");
+  return {app, [args] { run_wire(*args); }};
+}
+
+} // namespace meander::cli

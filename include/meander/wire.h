@@ -1,0 +1,81 @@
+// Wire and ribbon sculptures from the Hamiltonian cycle (paper Section 4): meshes that
+// can be rendered and 3D printed.
+//
+// Both methods follow the cycle as a ladder: two rails, left and right of the direction
+// of travel seen from the surface's outside. On an orientable surface the left rail
+// stays left all the way round, so every cycle gives a closed tube (a torus) or a closed
+// band (an annulus) whose faces point away from the surface's inside. On a
+// non-orientable surface the rails swap once per orientation-reversing loop; the tube
+// then closes with its cross-section turned half a turn (still a torus, still
+// consistently oriented) and the band becomes a Moebius band.
+#pragma once
+
+#include "meander/curve.h"
+#include "meander/hamiltonian.h"
+#include "meander/mesh.h"
+#include "meander/quadrangulate.h"
+
+#include <string_view>
+
+namespace meander {
+
+enum class WireShape {
+  wire,   // a closed solid tube: what a printer makes
+  ribbon, // a band lying on the surface (open: two boundary loops per cycle)
+};
+
+// Parses "wire" | "ribbon"; throws UsageError otherwise.
+WireShape parse_wire_shape(std::string_view name);
+
+// Constant diameter (Section 4, first method): a regular polygon (wire) or a line
+// segment (ribbon) swept along the smooth curve of the cycle.
+struct ConstantWireOptions {
+  WireShape shape = WireShape::wire;
+  double radius = 0; // tube radius, or half the ribbon's width; > 0, in mesh units
+  int sides = 8;     // sides of the swept polygon (wire only), >= 3
+  CurveOptions curve;
+};
+
+// Sweeps along cycle_curves(quads, cycle, options.curve). The frame at each point of
+// the curve comes from the surface normal (the weighted normals of the cycle's
+// triangles, blended like the control points), made perpendicular to the curve: the
+// curve lies on the surface, so this frame does not twist (Section 1.1), and because it
+// is computed per point rather than transported, the tube closes without a seam twist.
+// Wire: `sides` vertices and `sides` quads per curve point; ribbon: two vertices and one
+// quad per curve point. Throws UsageError for radius <= 0 or sides < 3. O(output).
+PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
+
+// The largest radius for which the constant-diameter tube around `centre` (closed
+// polylines) does not run into itself: half the distance between parts of the curves
+// that are not neighbours along them (segments whose distance d is less than 2/pi of
+// the arc between them are parts that meet again, not a bend), and no larger than the
+// radius of curvature (of the circle through each point and its two neighbours), where
+// the inside of a bend would fold. This is the thickness of a smooth curve (Gonzalez and
+// Maddocks) taken on the points; `meander wire` checks the result. Returns a bound
+// no larger than two control-polygon segments' length, since a wider tube would swallow
+// the surface's detail anyway. Expected O(points) with a uniform grid.
+double max_wire_radius(const Polylines& centre, int samples_per_segment);
+
+// Variable diameter (Section 4, second method). s and t in [0, 1] size the trapezoid
+// drawn inside each triangle of the cycle with the paper's bilinear formula (the
+// triangle read as a quad whose apex is doubled): s across the direction of travel (the
+// ribbon's width), t along it. s = t = 0 shrinks each trapezoid to the triangle's
+// control point; s = t = 1 gives the triangle itself.
+struct VariableWireOptions {
+  WireShape shape = WireShape::wire;
+  double s = 0.6, t = 0.6;
+  // Wire only: the slab's thickness perpendicular to the surface, centred on it, in mesh
+  // units; 0 = half the median width of the ribbon.
+  double thickness = 0;
+  int levels = 2; // Catmull-Clark levels (OpenSubdiv), >= 0; 0 gives the control mesh
+};
+
+// Trapezoids joined by quad connectors into a closed quad strip (ribbon); for wires each
+// trapezoid is extruded along the surface normal into a prism and the prisms joined by
+// hexahedral connectors into a closed toroidal quad mesh; then smoothed with
+// Catmull-Clark (subdivide.h). Control mesh: per triangle of the cycle 2 quads (ribbon)
+// or 8 quads (wire); each level multiplies the quads by 4. Throws UsageError for s or t
+// outside [0, 1], thickness < 0 or levels < 0.
+PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
+
+} // namespace meander

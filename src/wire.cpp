@@ -1,0 +1,368 @@
+#include "meander/wire.h"
+
+#include "meander/error.h"
+#include "meander/subdivide.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace meander {
+
+WireShape parse_wire_shape(std::string_view name) {
+  if (name == "wire") return WireShape::wire;
+  if (name == "ribbon") return WireShape::ribbon;
+  throw UsageError("unknown wire shape '" + std::string(name) + "' (expected wire or ribbon)");
+}
+
+namespace {
+
+Vec3 normalized(Vec3 v) {
+  const double n = norm(v);
+  return n > 0 ? v * float(1.0 / n) : Vec3{};
+}
+
+bool contains(const std::array<int32_t, 3>& t, int32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+// How each triangle of the cycle sits on the ladder. Triangle (p, apex, n) has its two
+// quad sides p-apex and apex-n; the curve enters through one and leaves through the
+// other. The corners of the trapezoid next to the apex form one rail, the others the
+// second rail; `apex_right` says which side of the direction of travel the apex rail
+// is on. The unit normal `up` is the triangle's normal signed so that, seen from it, the
+// right rail is on the right: the same side of the surface all along an orientable cycle.
+struct Ladder {
+  std::vector<uint8_t> entry_is_p;
+  std::vector<uint8_t> apex_right;
+  std::vector<Vec3> up;
+  std::vector<uint8_t> mobius; // per cycle: the rails swap where the cycle closes
+};
+
+Ladder make_ladder(const QuadMesh& quads, const TriangleCycle& cycle) {
+  const size_t n = cycle.order.size();
+  Ladder l;
+  l.entry_is_p.resize(n);
+  l.apex_right.resize(n);
+  l.up.resize(n);
+  l.mobius.resize(size_t(cycle.num_cycles()));
+  auto tri = [&](size_t i) { return cycle_triangle(quads, cycle.order[i]); };
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const size_t first = size_t(cycle.cycle_start[size_t(c)]), count = size_t(cycle.cycle_start[size_t(c) + 1]) - first;
+    auto at = [&](size_t k) { return tri(first + k % count); };
+    // Travelling from triangle k-1 into k: the apex rail stays on its side when both
+    // apexes coincide, and changes side when the apex of k is the other end of the
+    // shared quad side.
+    auto continue_rail = [&](size_t k, bool prev_right) {
+      return at(k)[1] == at(k + count - 1)[1] ? prev_right : !prev_right;
+    };
+    for (size_t k = 0; k < count; ++k) {
+      const auto t = at(k);
+      const size_t i = first + k;
+      l.entry_is_p[i] = contains(at(k + count - 1), t[0]);
+      l.apex_right[i] = k == 0 ? l.entry_is_p[i] : continue_rail(k, l.apex_right[i - 1]);
+      const Vec3 p = quads.positions[size_t(t[0])], a = quads.positions[size_t(t[1])], q = quads.positions[size_t(t[2])];
+      const Vec3 normal = normalized(cross(a - p, q - p));
+      l.up[i] = l.apex_right[i] == l.entry_is_p[i] ? normal : normal * -1.0f;
+    }
+    l.mobius[size_t(c)] = continue_rail(count, l.apex_right[first + count - 1]) != l.apex_right[first];
+    // A zero-area triangle has no normal of its own: it borrows its predecessor's.
+    size_t valid = count;
+    for (size_t k = 0; k < count && valid == count; ++k)
+      if (norm(l.up[first + k]) > 0) valid = k;
+    if (valid == count) throw TopologyError("every triangle of cycle " + std::to_string(c) + " has zero area: no surface normal to build a wire on");
+    for (size_t j = 1; j < count; ++j) {
+      const size_t k = first + (valid + j) % count, prev = first + (valid + j - 1) % count;
+      if (norm(l.up[k]) == 0) l.up[k] = (valid + j) % count == 0 && l.mobius[size_t(c)] ? l.up[prev] * -1.0f : l.up[prev];
+    }
+  }
+  return l;
+}
+
+// Uniform cubic B-spline weights at u, as curve.cpp samples the curve.
+std::array<float, 4> bspline_weights(float u) {
+  const float u2 = u * u, u3 = u2 * u;
+  return {(1 - u) * (1 - u) * (1 - u) / 6, (3 * u3 - 6 * u2 + 4) / 6, (-3 * u3 + 3 * u2 + 3 * u + 1) / 6, u3 / 6};
+}
+
+// Quads between consecutive rings of `width` vertices (ring i starts at first + i *
+// width), closing the last ring onto the first with its vertex j joined to the first
+// ring's vertex (j + shift) mod width. Open rings (a ribbon's rungs) get no quad from
+// their last vertex back to their first.
+void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t width, bool closed_ring, int32_t shift) {
+  for (int32_t i = 0; i < rings; ++i) {
+    const bool last = i + 1 == rings;
+    const int32_t a = first + i * width, b = first + (last ? 0 : i + 1) * width;
+    for (int32_t j = 0; j < (closed_ring ? width : width - 1); ++j) {
+      const int32_t j1 = (j + 1) % width;
+      const int32_t bj = last ? (j + shift) % width : j, bj1 = last ? (j1 + shift) % width : j1;
+      mesh.add_face({a + j, a + j1, b + bj1, b + bj});
+    }
+  }
+}
+
+} // namespace
+
+PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  const bool ribbon = options.shape == WireShape::ribbon;
+  if (!(options.radius > 0) || !std::isfinite(options.radius))
+    throw UsageError("the wire radius must be a positive number (got " + std::to_string(options.radius) + ")");
+  if (!ribbon && options.sides < 3) throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
+  const Polylines centre = cycle_curves(quads, cycle, options.curve);
+  const Ladder ladder = make_ladder(quads, cycle);
+  const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
+  // A ribbon is the sweep of a two-point section at +-90 degrees from the normal.
+  const int32_t width = ribbon ? 2 : options.sides;
+
+  PolygonMesh mesh;
+  mesh.positions.reserve(centre.points.size() * size_t(width));
+  mesh.face_vertices.reserve(centre.points.size() * size_t(width) * 4);
+  mesh.face_start.reserve(centre.points.size() * size_t(width) + 1);
+  for (int32_t c = 0; c < centre.size(); ++c) {
+    const auto points = centre.polyline(c);
+    const int32_t m = int32_t(points.size());
+    const size_t first_triangle = size_t(cycle.cycle_start[size_t(c)]);
+    const int32_t triangles = cycle.cycle_start[size_t(c) + 1] - cycle.cycle_start[size_t(c)];
+    const bool mobius = ladder.mobius[size_t(c)];
+    // On a Moebius cycle the last section must land on the first turned by half a turn.
+    // A polygon with an even number of sides maps onto itself that way; an odd one needs
+    // an extra turn of -pi/sides, spread evenly along the loop so no segment twists.
+    const int32_t shift = mobius ? width / 2 : 0;
+    const double twist = mobius ? 2 * std::numbers::pi * shift / width - std::numbers::pi : 0.0;
+    auto up = [&](int32_t control) {
+      const int32_t wrapped = (control % triangles + triangles) % triangles;
+      const Vec3 u = ladder.up[first_triangle + size_t(wrapped)];
+      return mobius && wrapped != control ? u * -1.0f : u;
+    };
+    const int32_t base = mesh.num_vertices();
+    Vec3 tangent{}, normal{};
+    for (int32_t i = 0; i < m; ++i) {
+      const int32_t segment = i / k;
+      const auto w = bspline_weights(float(i % k) / float(k));
+      Vec3 blended{};
+      for (int j = 0; j < 4; ++j) blended = blended + up(segment - 1 + j) * w[size_t(j)];
+      // A repeated point has no direction of its own: it keeps the previous frame.
+      if (const Vec3 t = normalized(points[size_t((i + 1) % m)] - points[size_t((i + m - 1) % m)]); norm(t) > 0) tangent = t;
+      if (const Vec3 nrm = normalized(blended - tangent * float(dot(blended, tangent))); norm(nrm) > 0) normal = nrm;
+      const Vec3 binormal = cross(tangent, normal);
+      const double offset = twist * i / m;
+      for (int32_t j = 0; j < width; ++j) {
+        const double angle = ribbon ? (j == 0 ? -0.5 : 0.5) * std::numbers::pi : 2 * std::numbers::pi * (j + 0.5) / width;
+        const double a = angle + offset;
+        mesh.positions.push_back(points[size_t(i)] + (normal * float(std::cos(a)) + binormal * float(std::sin(a))) * float(options.radius));
+      }
+    }
+    connect_rings(mesh, base, m, width, !ribbon, shift);
+  }
+  return mesh;
+}
+
+namespace {
+
+// Closest distance between segments [p0,p1] and [q0,q1] (Ericson, Real-Time Collision
+// Detection, 5.1.9), in double.
+double segment_distance(Vec3 p0, Vec3 p1, Vec3 q0, Vec3 q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  double s = 0, t = 0;
+  if (a <= 0 && e <= 0) return norm(r);
+  if (a <= 0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = dot(d1, r);
+    if (e <= 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = dot(d1, d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  const double x = r.x + d1.x * s - d2.x * t, y = r.y + d1.y * s - d2.y * t, z = r.z + d1.z * s - d2.z * t;
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+} // namespace
+
+double max_wire_radius(const Polylines& centre, int samples_per_segment) {
+  const size_t n = centre.points.size();
+  if (n < 3) return 0;
+  // Per segment: its curve, its length, and the arc length at its start.
+  std::vector<int32_t> curve_of(n);
+  std::vector<double> length(n), arc(n);
+  std::vector<double> total(size_t(centre.size()));
+  double sum_length = 0;
+  for (int32_t c = 0; c < centre.size(); ++c) {
+    const auto pts = centre.polyline(c);
+    double s = 0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const size_t g = size_t(centre.start[size_t(c)]) + i;
+      curve_of[g] = c;
+      arc[g] = s;
+      length[g] = norm(pts[(i + 1) % pts.size()] - pts[i]);
+      s += length[g];
+    }
+    total[size_t(c)] = s;
+    sum_length += s;
+  }
+  auto next = [&](size_t g) {
+    const int32_t c = curve_of[g];
+    return g + 1 == size_t(centre.start[size_t(c) + 1]) ? size_t(centre.start[size_t(c)]) : g + 1;
+  };
+  auto prev = [&](size_t g) {
+    const int32_t c = curve_of[g];
+    return g == size_t(centre.start[size_t(c)]) ? size_t(centre.start[size_t(c) + 1]) - 1 : g - 1;
+  };
+
+  // A wider tube folds where the curve bends: its radius must stay below the radius of
+  // curvature, taken as that of the circle through each point and its two neighbours.
+  double limit = 2.0 * std::max(1, samples_per_segment) * sum_length / double(n);
+  for (size_t g = 0; g < n; ++g) {
+    const Vec3 a = centre.points[prev(g)], b = centre.points[g], c = centre.points[next(g)];
+    const double twice_area = norm(cross(b - a, c - a));
+    if (twice_area > 0) limit = std::min(limit, norm(b - a) * norm(c - b) * norm(c - a) / (2 * twice_area));
+  }
+
+  // Parts of the curve that come back near each other: every pair of segments closer
+  // than 2 * limit is found with a uniform grid of that cell size. A pair at distance d
+  // forbids the radii in (d/2, arc/pi): up to d/2 the tubes stay apart, and from arc/pi
+  // the pair lies within one bend of the tube, which the folding bound already covers.
+  const double cell = 2 * limit;
+  if (!(cell > 0)) return 0;
+  const Box3 box = bounding_box(centre.points);
+  auto cell_of = [&](double v, double lo) { return int64_t(std::floor((v - lo) / cell)); };
+  const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1;
+  auto key = [&](int64_t x, int64_t y, int64_t z) { return (z * ny + y) * nx + x; };
+  std::vector<std::pair<int64_t, int32_t>> entries;
+  entries.reserve(n);
+  for (size_t g = 0; g < n; ++g) {
+    const Vec3 a = centre.points[g], b = centre.points[next(g)];
+    for (int64_t z = cell_of(std::min(a.z, b.z), box.min.z); z <= cell_of(std::max(a.z, b.z), box.min.z); ++z)
+      for (int64_t y = cell_of(std::min(a.y, b.y), box.min.y); y <= cell_of(std::max(a.y, b.y), box.min.y); ++y)
+        for (int64_t x = cell_of(std::min(a.x, b.x), box.min.x); x <= cell_of(std::max(a.x, b.x), box.min.x); ++x)
+          entries.push_back({key(x, y, z), int32_t(g)});
+  }
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::pair<double, double>> forbidden; // (d/2, arc/pi)
+  auto consider = [&](size_t g, size_t h) {
+    if (g == h || next(g) == h || next(h) == g) return;
+    const double d = segment_distance(centre.points[g], centre.points[next(g)], centre.points[h], centre.points[next(h)]);
+    if (d >= cell) return;
+    double between = INFINITY;
+    if (curve_of[g] == curve_of[h]) {
+      const size_t lo = std::min(g, h), hi = std::max(g, h);
+      const double inner = arc[hi] - arc[lo] - length[lo];
+      between = std::min(inner, total[size_t(curve_of[g])] - inner - length[lo] - length[hi]);
+    }
+    if (between / std::numbers::pi > d / 2) forbidden.push_back({d / 2, between / std::numbers::pi});
+  };
+  // Neighbouring cells hold the segments within one cell size of those in this cell.
+  for (size_t e = 0; e < entries.size();) {
+    size_t end = e;
+    while (end < entries.size() && entries[end].first == entries[e].first) ++end;
+    const int64_t k = entries[e].first, x = k % nx, y = (k / nx) % ny, z = k / (nx * ny);
+    for (int64_t dz = -1; dz <= 1; ++dz)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+          const int64_t key2 = key(x + dx, y + dy, z + dz);
+          if (x + dx < 0 || y + dy < 0 || z + dz < 0 || x + dx >= nx || y + dy >= ny || key2 < k) continue;
+          const auto range = std::equal_range(entries.begin(), entries.end(), std::pair<int64_t, int32_t>{key2, -1},
+                                              [](const auto& a, const auto& b) { return a.first < b.first; });
+          for (size_t i = e; i < end; ++i)
+            for (auto it = range.first; it != range.second; ++it)
+              if (key2 != k || it->second > entries[i].second) consider(size_t(entries[i].second), size_t(it->second));
+        }
+    e = end;
+  }
+  // The largest radius up to `limit` that no pair forbids: sweep the intervals by
+  // decreasing lower end, dropping to the lower end of each one that covers the radius.
+  std::sort(forbidden.begin(), forbidden.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  double r = limit;
+  for (const auto& [lo, hi] : forbidden)
+    if (lo < r && r < hi) r = lo;
+  return r;
+}
+
+PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
+  auto unit = [](double v) { return v >= 0 && v <= 1; };
+  if (!unit(options.s) || !unit(options.t))
+    throw UsageError("--s and --t must be between 0 and 1 (got s=" + std::to_string(options.s) + ", t=" + std::to_string(options.t) + ")");
+  if (!(options.thickness >= 0) || !std::isfinite(options.thickness))
+    throw UsageError("--thickness must be 0 (automatic) or a positive number (got " + std::to_string(options.thickness) + ")");
+  if (options.levels < 0) throw UsageError("--levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+  const bool ribbon = options.shape == WireShape::ribbon;
+  const Ladder ladder = make_ladder(quads, cycle);
+
+  // Two rungs per triangle: where the curve enters its trapezoid and where it leaves.
+  // The bilinear formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's
+  // rotation order; v[m][n] is the corner that is p_{1-m,1-n} when s = t = 1.
+  const size_t triangles = cycle.order.size();
+  std::vector<Vec3> left(2 * triangles), right(2 * triangles), normal(2 * triangles);
+  const float w0s = float((1 - options.s) / 2), w1s = float((1 + options.s) / 2);
+  const float w0t = float((1 - options.t) / 2), w1t = float((1 + options.t) / 2);
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const size_t first = size_t(cycle.cycle_start[size_t(c)]), count = size_t(cycle.cycle_start[size_t(c) + 1]) - first;
+    const float closing = ladder.mobius[size_t(c)] ? -1.0f : 1.0f;
+    for (size_t k = 0; k < count; ++k) {
+      const size_t i = first + k;
+      const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
+      const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
+      const Vec3 v00 = a * w0s + (q * w0t + p * w1t) * w1s, v10 = a * w1s + (q * w0t + p * w1t) * w0s;
+      const Vec3 v01 = a * w0s + (p * w0t + q * w1t) * w1s, v11 = a * w1s + (p * w0t + q * w1t) * w0s;
+      // Corners on the p side, then the n side, each as (apex rail, other rail).
+      const std::array<std::pair<Vec3, Vec3>, 2> sides{{{v10, v00}, {v11, v01}}};
+      const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
+      for (int r = 0; r < 2; ++r) {
+        const auto [apex_corner, other_corner] = sides[size_t(r == 0 ? !entry_p : entry_p)];
+        left[2 * i + size_t(r)] = apex_right ? other_corner : apex_corner;
+        right[2 * i + size_t(r)] = apex_right ? apex_corner : other_corner;
+      }
+      // The rungs either side of a quad side share the normal of its two triangles, so a
+      // connector is a straight prism.
+      const Vec3 before = k == 0 ? ladder.up[first + count - 1] * closing : ladder.up[i - 1];
+      const Vec3 after = k + 1 == count ? ladder.up[first] * closing : ladder.up[i + 1];
+      normal[2 * i] = normalized(before + ladder.up[i]);
+      normal[2 * i + 1] = normalized(ladder.up[i] + after);
+      for (int r = 0; r < 2; ++r)
+        if (norm(normal[2 * i + size_t(r)]) == 0) normal[2 * i + size_t(r)] = ladder.up[i];
+    }
+  }
+
+  double thickness = options.thickness;
+  if (!ribbon && thickness == 0) {
+    std::vector<double> widths(left.size());
+    for (size_t r = 0; r < left.size(); ++r) widths[r] = norm(right[r] - left[r]);
+    std::nth_element(widths.begin(), widths.begin() + ptrdiff_t(widths.size() / 2), widths.end());
+    thickness = widths.empty() ? 0.0 : widths[widths.size() / 2] / 2;
+  }
+
+  // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,
+  // right above, right below), which makes the faces point out of the slab.
+  const int32_t width = ribbon ? 2 : 4;
+  PolygonMesh control;
+  control.positions.reserve(left.size() * size_t(width));
+  for (size_t r = 0; r < left.size(); ++r) {
+    if (ribbon) {
+      control.positions.insert(control.positions.end(), {left[r], right[r]});
+    } else {
+      const Vec3 h = normal[r] * float(thickness / 2);
+      control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
+    }
+  }
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const int32_t first = 2 * cycle.cycle_start[size_t(c)], rungs = 2 * cycle.cycle_start[size_t(c) + 1] - first;
+    // Where a Moebius cycle closes, left meets right: a ribbon's rung is reversed, a
+    // slab turned by half a turn (both directions swap).
+    connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
+  }
+  return subdivide(control, {.levels = options.levels, .limit = true});
+}
+
+} // namespace meander

@@ -1,0 +1,239 @@
+// Wires and ribbons (paper Section 4): the invariants a printer and a viewer rely on,
+// on generated shapes and the real meshes, through the library and the CLI.
+#include "test_support.h"
+
+#include "meander/check.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/pipeline.h"
+#include "meander/printability.h"
+#include "meander/shapes.h"
+#include "meander/wire.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace meander {
+namespace {
+
+CurveResult curve_of(PolygonMesh mesh, int samples = 2) {
+  return make_curve(repair(std::move(mesh), "mesh").mesh, {.curve = {.samples = samples}});
+}
+
+double auto_radius(const CurveResult& curve, int samples = 2) { return max_wire_radius(curve.curves, samples); }
+
+PolygonMesh constant(const CurveResult& curve, double radius, WireShape shape = WireShape::wire, int samples = 2) {
+  return constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .curve = {.samples = samples}});
+}
+
+// A closed wire is one torus per cycle: watertight, consistently oriented, Euler
+// characteristic 0 in every component, enclosing positive volume (outward normals).
+void expect_tori(const PolygonMesh& wire, int32_t cycles, bool volume_positive = true) {
+  const PrintabilityReport r = check_printability(wire, {.self_intersections = false, .thickness = false});
+  EXPECT_TRUE(r.watertight);
+  EXPECT_EQ(r.misoriented_edges, 0);
+  ASSERT_EQ(int32_t(r.components.size()), cycles);
+  for (const SolidComponent& c : r.components) {
+    EXPECT_EQ(c.euler_characteristic, 0);
+    if (volume_positive) EXPECT_GT(c.volume, 0);
+  }
+}
+
+struct Shape {
+  const char* name;
+  PolygonMesh (*make)();
+};
+
+class WireOnShapes : public ::testing::TestWithParam<Shape> {};
+
+TEST_P(WireOnShapes, ConstantWireIsOneTorusPerCycleWithoutSelfIntersection) {
+  const CurveResult curve = curve_of(GetParam().make());
+  const double r = auto_radius(curve);
+  ASSERT_GT(r, 0);
+  const PolygonMesh wire = constant(curve, r);
+  expect_tori(wire, curve.cycle.num_cycles());
+  const PrintabilityReport report = check_printability(wire, {.thickness = false});
+  EXPECT_FALSE(report.self_intersecting) << "faces " << report.first_intersection[0] << ", " << report.first_intersection[1];
+}
+
+TEST_P(WireOnShapes, VariableWireIsOneTorusPerCycle) {
+  const CurveResult curve = curve_of(GetParam().make());
+  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
+  expect_tori(wire, curve.cycle.num_cycles());
+  EXPECT_FALSE(check_printability(wire, {.thickness = false}).self_intersecting);
+}
+
+TEST_P(WireOnShapes, RibbonsAreBandsWithTwoBoundaryLoopsPerCycle) {
+  const CurveResult curve = curve_of(GetParam().make());
+  for (const PolygonMesh& ribbon : {constant(curve, auto_radius(curve), WireShape::ribbon),
+                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1})}) {
+    const MeshReport r = inspect(ribbon);
+    EXPECT_EQ(r.non_manifold_edges, 0);
+    EXPECT_EQ(r.non_manifold_vertices, 0);
+    EXPECT_EQ(r.misoriented_edges, 0);
+    EXPECT_EQ(r.boundary_loops, 2 * curve.cycle.num_cycles());
+    ASSERT_EQ(int32_t(r.components.size()), curve.cycle.num_cycles());
+    for (const ComponentReport& c : r.components) EXPECT_EQ(c.euler_characteristic, 0); // an annulus
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, WireOnShapes,
+                         ::testing::Values(Shape{"sphere", [] { return sphere(300); }},
+                                           Shape{"torus", [] { return torus(400); }},
+                                           Shape{"pretzel", [] { return genus_surface(2, 600); }},
+                                           Shape{"grid", [] { return grid(200); }}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// Faces of the ribbon point the way the surface's faces do: on a sphere with outward
+// faces, every ribbon face's normal points away from the centre.
+TEST(Wire, RibbonFacesPointOutOfTheSurface) {
+  const CurveResult curve = curve_of(sphere(300));
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0});
+  for (int32_t f = 0; f < ribbon.num_faces(); ++f) {
+    const auto v = ribbon.face(f);
+    const Vec3 a = ribbon.positions[size_t(v[0])], b = ribbon.positions[size_t(v[1])], c = ribbon.positions[size_t(v[2])],
+               d = ribbon.positions[size_t(v[3])];
+    const Vec3 n = cross(c - a, d - b);
+    if (norm(n) > 1e-9) EXPECT_GT(dot(n, a + c), 0) << "face " << f;
+  }
+}
+
+// On a Moebius band the dual-of-Simplest cycle is the outline of a spanning tree's
+// neighbourhood, a disk: it is two-sided, so wires and ribbons close as on any surface.
+TEST(Wire, CycleOnAMoebiusBandIsTwoSided) {
+  const CurveResult curve = curve_of(moebius(120));
+  ASSERT_EQ(curve.cycle.num_cycles(), 1);
+  expect_tori(constant(curve, auto_radius(curve)), 1, false);
+  const MeshReport ribbon = inspect(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0}));
+  EXPECT_EQ(ribbon.boundary_loops, 2);
+  EXPECT_TRUE(ribbon.orientable);
+}
+
+// A strip of triangles between two rows of points B_i and U_i, consecutive triangles
+// sharing a side: D_i = (B_i, U_i, B_i+1) with apex U_i, E_i = (U_i+1, B_i+1, U_i) with
+// apex B_i+1, in the cycle D_0 E_0 D_1 E_1 ... With n + 1 points per row the strip is
+// open (its two ends are joined up arbitrarily); with n and `twisted`, it closes into a
+// Moebius band: B_n is U_0 and U_n is B_0.
+struct Strip {
+  QuadMesh quads;
+  TriangleCycle cycle;
+};
+Strip triangle_strip(const std::vector<Vec3>& bottom, const std::vector<Vec3>& top, bool twisted) {
+  Strip s;
+  const int32_t rows = int32_t(bottom.size()), n = twisted ? rows : rows - 1;
+  s.quads.positions = bottom;
+  s.quads.positions.insert(s.quads.positions.end(), top.begin(), top.end());
+  auto b = [&](int32_t i) { return twisted && i == n ? rows : i; };
+  auto t = [&](int32_t i) { return twisted && i == n ? 0 : rows + i; };
+  for (int32_t i = 0; i < n; ++i) {
+    s.quads.quads.push_back({b(i), t(i), b(i + 1), -2}); // corner 1 is the apex
+    s.cycle.order.push_back(4 * (2 * i) + 1);
+    s.quads.quads.push_back({t(i + 1), b(i + 1), t(i), -2});
+    s.cycle.order.push_back(4 * (2 * i + 1) + 1);
+  }
+  s.cycle.cycle_start = {0, s.cycle.num_triangles()};
+  return s;
+}
+
+// A cycle that runs once around a Moebius band (B_n is U_0 and U_n is B_0) reverses the
+// ladder: the wire closes with its section turned half a turn, still a consistently
+// oriented torus for even and odd numbers of sides, and the ribbon is a Moebius band.
+TEST(Wire, OneSidedCycleClosesWithAHalfTurn) {
+  const int n = 40;
+  std::vector<Vec3> bottom, top;
+  auto band = [](double angle, double v) {
+    const double r = 1 + v * std::cos(angle / 2);
+    return Vec3{float(r * std::cos(angle)), float(r * std::sin(angle)), float(v * std::sin(angle / 2))};
+  };
+  for (int i = 0; i < n; ++i) {
+    bottom.push_back(band(2 * std::numbers::pi * i / n, -0.3));
+    top.push_back(band(2 * std::numbers::pi * i / n, 0.3));
+  }
+  const Strip strip = triangle_strip(bottom, top, true);
+  const MeshReport ribbon = inspect(variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .levels = 0}));
+  EXPECT_EQ(ribbon.boundary_loops, 1);
+  EXPECT_FALSE(ribbon.orientable);
+  expect_tori(variable_wire(strip.quads, strip.cycle, {.levels = 1}), 1, false);
+  for (int sides : {4, 5})
+    expect_tori(constant_wire(strip.quads, strip.cycle, {.radius = 0.02, .sides = sides, .curve = {.samples = 2}}), 1, false);
+}
+
+// --radius auto is tight: the largest radius is clear of self-intersection while 1.2
+// times it is not (the polygon's flat sides sit at cos(pi/8) of the radius, so 1.2 is
+// beyond any slack of the bound).
+TEST(Wire, AutoRadiusIsTheLargestWithoutSelfIntersection) {
+  for (auto make : {+[] { return sphere(300); }, +[] { return torus(400); }}) {
+    const CurveResult curve = curve_of(make());
+    const double r = auto_radius(curve);
+    EXPECT_FALSE(check_printability(constant(curve, r), {.thickness = false}).self_intersecting);
+    EXPECT_TRUE(check_printability(constant(curve, 1.2 * r), {.thickness = false}).self_intersecting);
+  }
+}
+
+// Remark 1 of Section 4: with s = t = 0 the trapezoid degenerates to the control point
+// (2 apex + p + n) / 4.
+TEST(Wire, ZeroSizedTrapezoidIsTheControlPoint) {
+  const CurveResult curve = curve_of(torus(200));
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 0, .t = 0, .levels = 0});
+  const Polylines control = control_polygons(curve.quads, curve.cycle);
+  ASSERT_EQ(size_t(ribbon.num_vertices()), 4 * control.points.size());
+  for (size_t i = 0; i < control.points.size(); ++i)
+    for (size_t j = 0; j < 4; ++j) EXPECT_LT(norm(ribbon.positions[4 * i + j] - control.points[i]), 1e-6) << i;
+}
+
+// With s = t = 1 each trapezoid is its whole triangle: the ribbon's control mesh covers
+// the surface, its area equal to the triangulated quad mesh's.
+TEST(Wire, FullSizedTrapezoidsCoverTheSurface) {
+  const CurveResult curve = curve_of(sphere(300));
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 1, .t = 1, .levels = 0});
+  auto area = [](const PolygonMesh& m) {
+    double sum = 0;
+    for (int32_t f = 0; f < m.num_faces(); ++f) {
+      const auto v = m.face(f);
+      for (size_t i = 1; i + 1 < v.size(); ++i)
+        sum += norm(cross(m.positions[size_t(v[i])] - m.positions[size_t(v[0])], m.positions[size_t(v[i + 1])] - m.positions[size_t(v[0])])) / 2;
+    }
+    return sum;
+  };
+  EXPECT_NEAR(area(ribbon), area(cycle_triangles(curve.quads, curve.cycle)), 1e-4 * area(ribbon));
+}
+
+// Remark 2 of Section 4: where the triangle strip is a parallelogram, the quad strip is
+// one too: a straight run of triangles between two parallel lines gives straight rails.
+TEST(Wire, ParallelogramStripStaysStraight) {
+  // Between y = 0 and y = 1 in the plane z = 0, the rows shifted against each other.
+  const int n = 12;
+  std::vector<Vec3> bottom, top;
+  for (int i = 0; i <= n; ++i) {
+    bottom.push_back({float(i), 0, 0});
+    top.push_back({float(i) + 0.3f, 1, 0});
+  }
+  const Strip strip = triangle_strip(bottom, top, false);
+  const PolygonMesh ribbon = variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .s = 0.5, .t = 0.4, .levels = 0});
+  // Away from the ends (where this open strip is closed up arbitrarily) every rail point
+  // of one side lies on one line parallel to the strip.
+  for (int side = 0; side < 2; ++side) {
+    const float y = ribbon.positions[size_t(2 * 4 + side)].y;
+    for (int rung = 4; rung < 2 * (2 * n) - 4; ++rung) {
+      const Vec3 p = ribbon.positions[size_t(2 * rung + side)];
+      EXPECT_NEAR(p.y, y, 1e-6) << "rung " << rung;
+      EXPECT_NEAR(p.z, 0, 1e-6);
+    }
+  }
+}
+
+TEST(Wire, BadParametersAreRefused) {
+  const CurveResult curve = curve_of(sphere(100));
+  EXPECT_THROW(constant(curve, -1), UsageError);
+  EXPECT_THROW(constant_wire(curve.quads, curve.cycle, {.radius = 0.1, .sides = 2}), UsageError);
+  EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.s = 1.5}), UsageError);
+  EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.t = -0.1}), UsageError);
+  EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.thickness = -1}), UsageError);
+  EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.levels = -1}), UsageError);
+}
+
+} // namespace
+} // namespace meander
