@@ -13,6 +13,7 @@
 #pragma once
 
 #include "meander/mesh.h"
+#include "meander/textured_mesh.h"
 
 #include <filesystem>
 #include <span>
@@ -21,7 +22,8 @@
 
 namespace meander {
 
-enum class MeshFormat { obj, ply, stl, off, threemf };
+// gltf is glTF 2.0 in either form: .gltf (JSON) or .glb (binary), told apart by content.
+enum class MeshFormat { obj, ply, stl, off, gltf, threemf };
 
 // The format for a path's extension; throws UsageError naming the path if unknown.
 MeshFormat mesh_format_from_path(const std::filesystem::path& path);
@@ -35,6 +37,7 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 // "solid" header); vertices welded by exact position, numbered by first appearance.
 // OFF: [ST][C][N]OFF header (4OFF, nOFF and binary OFF are refused), counts, vertices,
 // faces; colours after a face's indices are ignored.
+// glTF (.gltf, .glb): see read_textured_mesh; only the geometry is returned.
 // Vertex coordinates must be finite; face indices must be in range; faces need at least
 // 3 vertices; a file without faces is refused ("no faces"), and so is one whose counts
 // claim more than its bytes hold (before anything is allocated for them). The mesh is
@@ -44,6 +47,45 @@ PolygonMesh read_mesh(const std::filesystem::path& path);
 
 // The same from bytes in memory; `name` stands for the file in messages.
 PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
+
+// Reads a mesh with its appearance (textured_mesh.h):
+//  .obj  as read_mesh, plus `vt` texture coordinates, `mtllib` (MTL files relative to the
+//        OBJ's folder, read at that line) and `usemtl` (one material per face, several
+//        per mesh). From the MTL: newmtl, Kd (linear base colour) and map_Kd (a texture
+//        relative to the MTL's folder, options like -s skipped; PNG, JPEG, BMP, TGA...).
+//        Without mtllib the appearance is empty (a plain mesh) and usemtl is ignored;
+//        faces before the first usemtl get a light grey "default" material.
+//  .gltf/.glb  every triangle primitive (triangles, strips, fans; points and lines are
+//        skipped) of every mesh in the default scene (or scene 0), with the node
+//        transforms applied (winding reversed under a mirroring transform); POSITION,
+//        TEXCOORD_n for the base colour texture, baseColorFactor and baseColorTexture
+//        (embedded in the GLB, data: URIs, or files beside a .gltf). Exactly equal
+//        positions are welded into one vertex; texture coordinates stay per corner.
+//  other mesh formats: as read_mesh, with an empty appearance.
+// Refusals name the file and line that is wrong: "bunny.obj:3: mtllib 'x.mtl': x.mtl:
+// cannot open: No such file or directory", "x.mtl:5: map_Kd 'tex.png': tex.png: cannot
+// decode image: ...", "bunny.obj:7: usemtl 'red': no material of that name in the
+// mtllib files", "bunny.obj:9: face references texture coordinate 12 but only 4 exist",
+// "model.glb: <tinygltf's message>", "model.glb: mesh 0 primitive 1: POSITION: accessor 3
+// reaches past the end of its buffer view". IOError for files that cannot be opened,
+// InputError for malformed content.
+TexturedMesh read_textured_mesh(const std::filesystem::path& path);
+
+// Reads an image file (PNG, JPEG, BMP, TGA, ... as stb_image decodes them) as an RGBA8
+// texture. IOError if it cannot be opened, InputError("path: cannot decode image: ...").
+Texture read_texture(const std::filesystem::path& path);
+
+// Writes a mesh with its appearance (check_appearance must accept it, else UsageError):
+//  .obj  OBJ with v, vt and f v/vt, `usemtl` before each run of faces of one material,
+//        beside it NAME.mtl (newmtl, Kd, map_Kd) and the textures as PNG files
+//        NAME_texture.png (NAME_texture_K.png for material K when several have one), all
+//        referred to by relative paths. Without materials: the OBJ alone.
+//  .glb  one binary glTF 2.0 file: vertices split where texture coordinates differ
+//        (smooth normals kept across the seams), one primitive per used material, each
+//        texture embedded as PNG; double-sided, non-metallic materials.
+// Atomic as a whole: every file is written before any is renamed into place, and if a
+// rename fails the files already renamed are removed. Other extensions: UsageError.
+void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path);
 
 // Reads closed polylines from the `l` elements of an OBJ file (v/vt indices, negative
 // and forward indices as for faces). Each `l` is one closed loop: a last index equal to
@@ -59,16 +101,22 @@ struct MeshWriteOptions {
   // lines (other formats ignore it; empty groups get no line). Entries must be
   // non-decreasing face numbers in 0..num_faces (else UsageError). Empty: no groups.
   std::span<const int32_t> group_start;
+  // GLB: also write area-weighted vertex normals, so that viewers shade the surface
+  // smooth rather than faceted (other formats ignore it).
+  bool normals = true;
 };
 
 // Writes a polygon mesh: OBJ (v, f), PLY (vertex float x,y,z; face list uchar int, or
 // uint int if a face has more than 255 vertices), STL (triangles with computed normals;
-// polygons are fanned from their first vertex), OFF, 3MF (through lib3mf: one mesh object
-// of the triangles fanned from each polygon's first vertex, triangles that repeat a vertex
-// left out, coordinates rounded to 6 decimals, unit millimetre, one build item; 3MF is
-// written only: reading it is a UsageError). Floats are written in text as the shortest
-// decimal that reads back to the same float. Face indices must be in range.
-// Atomic: no partial file is left.
+// polygons are fanned from their first vertex), OFF, GLB (binary glTF 2.0: one mesh of
+// triangles fanned from each polygon's first vertex, float positions with their min/max,
+// optional normals, uint32 indices; valid for the Khronos glTF validator; .gltf is
+// refused with a UsageError), 3MF (through lib3mf: one mesh object of the triangles
+// fanned from each polygon's first vertex, triangles that repeat a vertex left out,
+// coordinates rounded to 6 decimals, unit millimetre, one build item; 3MF is written
+// only: reading it is a UsageError). Floats are written in text as the shortest decimal
+// that reads back to the same float. Face indices must be in range. Atomic: no partial
+// file is left.
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 
 // Writes closed polylines, format by extension:

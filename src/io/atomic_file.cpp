@@ -96,13 +96,29 @@ void AtomicFile::write_all(const char* data, size_t size) {
   }
 }
 
-void AtomicFile::commit() {
+void AtomicFile::close() {
+  if (fd_ < 0) return;
   flush();
   const int closed = ::close(fd_);
   fd_ = -1;
   if (closed != 0) fail("cannot write", errno);
+}
+
+void AtomicFile::commit() {
+  close();
   if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot write", errno);
   committed_ = true;
+}
+
+void AtomicFile::commit_all(std::span<AtomicFile* const> files) {
+  for (AtomicFile* file : files) file->close();
+  size_t renamed = 0;
+  try {
+    for (; renamed < files.size(); ++renamed) files[renamed]->commit();
+  } catch (...) {
+    for (size_t i = 0; i < renamed; ++i) ::unlink(files[i]->target_.c_str());
+    throw;
+  }
 }
 
 void AtomicFile::fail(std::string_view what, int error) const {

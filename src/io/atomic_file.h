@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,11 @@ public:
   // Writes out the buffer, closes the file and renames it over the target.
   void commit();
 
+  // Commits several files that belong together (an OBJ, its MTL and its textures): all
+  // are written out and closed before the first is renamed, so a full disk leaves none;
+  // if a rename still fails, the targets already renamed are removed again.
+  static void commit_all(std::span<AtomicFile* const> files);
+
 private:
   // At least n (<= the buffer's size) free bytes at the end of the buffer.
   char* room(size_t n) {
@@ -49,6 +55,8 @@ private:
     return buffer_.data() + used_;
   }
   void flush();
+  // Writes out the buffer and closes the file (once).
+  void close();
   void write_all(const char* data, size_t size);
   [[noreturn]] void fail(std::string_view what, int error) const;
 

@@ -1,68 +1,18 @@
 #include "io/binary.h"
+#include "io/block_writer.h"
 #include "io/formats.h"
 #include "io/reader_support.h"
 #include "io/text_cursor.h"
+#include "io/welder.h"
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 namespace meander::io {
 namespace {
-
-// Merges the corners of a triangle soup into shared vertices. Positions that compare
-// equal as floats are one vertex (so -0 and +0 are one), numbered in order of first
-// appearance; an open-addressing table of vertex indices keeps it linear.
-class Welder {
-public:
-  Welder(std::vector<Vec3>& positions, size_t expected_vertices, std::string_view name)
-      : positions_(positions), name_(name) {
-    rebuild(std::bit_ceil(std::max<size_t>(16, 2 * expected_vertices)));
-  }
-
-  int32_t add(Vec3 p) {
-    const Key key = key_of(p);
-    size_t slot = hash(key) & mask_;
-    for (; slots_[slot] >= 0; slot = (slot + 1) & mask_)
-      if (key_of(positions_[size_t(slots_[slot])]) == key) return slots_[slot];
-    if (int64_t(positions_.size()) == max_count) fail_input(name_, too_many(uint64_t(max_count) + 1, "vertices"));
-    const int32_t index = int32_t(positions_.size());
-    positions_.push_back(p);
-    slots_[slot] = index;
-    // At most half full, so probe runs stay short.
-    if (2 * positions_.size() > slots_.size()) rebuild(2 * slots_.size());
-    return index;
-  }
-
-private:
-  using Key = std::array<uint32_t, 3>;
-  // Adding +0 turns -0 into +0 and leaves every other value as it is.
-  static Key key_of(Vec3 p) {
-    return {std::bit_cast<uint32_t>(p.x + 0.0f), std::bit_cast<uint32_t>(p.y + 0.0f),
-            std::bit_cast<uint32_t>(p.z + 0.0f)};
-  }
-  static size_t hash(const Key& k) {
-    uint64_t h = k[0] * 0x9E3779B97F4A7C15ull ^ k[1] * 0xC2B2AE3D27D4EB4Full ^ k[2] * 0x165667B19E3779F9ull;
-    h ^= h >> 32;
-    h *= 0xD6E8FEB86659FD93ull;
-    return size_t(h ^ (h >> 32));
-  }
-  void rebuild(size_t size) {
-    slots_.assign(size, -1);
-    mask_ = size - 1;
-    for (size_t i = 0; i < positions_.size(); ++i) {
-      size_t slot = hash(key_of(positions_[i])) & mask_;
-      while (slots_[slot] >= 0) slot = (slot + 1) & mask_;
-      slots_[slot] = int32_t(i);
-    }
-  }
-
-  std::vector<Vec3>& positions_;
-  std::string_view name_;
-  std::vector<int32_t> slots_;
-  size_t mask_ = 0;
-};
 
 // An ascii STL starts with "solid" and is text. A binary one may start with "solid" as
 // well (many exporters put it in the header), but its triangle count and floats bring
@@ -143,10 +93,16 @@ template <class F> void for_each_triangle(const PolygonMesh& mesh, F f) {
   }
 }
 
+// In float, which is what the file stores and cheaper than double; in double only for
+// the triangles whose squared doubled area would underflow or overflow a float.
 Vec3 unit_normal(Vec3 a, Vec3 b, Vec3 c) {
-  const Vec3 n = cross(b - a, c - a);
-  const double length = norm(n);
-  return length > 0 ? n * float(1 / length) : Vec3{};
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+  const float squared = n.x * n.x + n.y * n.y + n.z * n.z;
+  if (squared >= 1e-30f && squared <= 1e30f) return n * (1 / std::sqrt(squared));
+  const Vec3 precise = cross(e1, e2);
+  const double length = norm(precise);
+  return length > 0 ? precise * float(1 / length) : Vec3{};
 }
 
 } // namespace
@@ -193,15 +149,25 @@ void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicF
   uint32_t triangles = 0;
   for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += uint32_t(std::max(mesh.face_size(f) - 2, 0));
   out.little_endian(triangles);
-  for_each_triangle(mesh, [&](Vec3 a, Vec3 b, Vec3 c) {
-    char record[50] = {}; // the 2-byte attribute count stays 0
-    char* at = record;
-    for (Vec3 p : {unit_normal(a, b, c), a, b, c})
-      for (float v : {p.x, p.y, p.z}) {
-        store_little_endian(at, v);
-        at += 4;
+  write_blocks(out, mesh.num_faces(), 1 << 15, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
+    size_t records = 0;
+    for (int64_t f = begin; f < end; ++f) records += size_t(std::max(mesh.face_size(int32_t(f)) - 2, 0));
+    bytes.resize(50 * records);
+    char* at = bytes.data();
+    for (int64_t f = begin; f < end; ++f) {
+      const std::span<const int32_t> v = mesh.face(int32_t(f));
+      const Vec3 a = mesh.positions[size_t(v[0])];
+      for (size_t k = 1; k + 1 < v.size(); ++k) {
+        const Vec3 b = mesh.positions[size_t(v[k])], c = mesh.positions[size_t(v[k + 1])];
+        for (Vec3 p : {unit_normal(a, b, c), a, b, c})
+          for (float x : {p.x, p.y, p.z}) {
+            store_little_endian(at, x);
+            at += 4;
+          }
+        store_little_endian(at, uint16_t(0)); // attribute byte count
+        at += 2;
       }
-    out.bytes(record, sizeof record);
+    }
   });
 }
 
