@@ -121,6 +121,12 @@ bool in_wedge(P3 v, P3 a, P3 c, P3 d) {
 // away from v: the far edges ab and cd anywhere, an edge through v only when it lies in
 // the other's plane and inside its wedge.
 bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
+  // Usual on a smooth surface: one triangle lies strictly on one side of the other's
+  // plane except at v, so they cannot meet elsewhere.
+  const int sc = orient3d(v, a, b, c), sd = orient3d(v, a, b, d);
+  if (sc * sd > 0) return false;
+  const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
+  if (sa * sb > 0) return false;
   return segment_meets_triangle(a, b, v, c, d) || segment_meets_triangle(c, d, v, a, b) || in_wedge(v, a, c, d) ||
          in_wedge(v, b, c, d) || in_wedge(v, c, a, b) || in_wedge(v, d, a, b);
 }
