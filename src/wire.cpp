@@ -1,6 +1,7 @@
 #include "meander/wire.h"
 
 #include "meander/error.h"
+#include "meander/printability.h"
 #include "meander/subdivide.h"
 
 #include <algorithm>
@@ -37,7 +38,20 @@ struct Ladder {
   std::vector<uint8_t> apex_right;
   std::vector<Vec3> up;
   std::vector<uint8_t> mobius; // per cycle: the rails swap where the cycle closes
+  // Per cycle: every triangle is oriented the ladder's way, as on an orientable surface.
+  // There the surface normal is taken smooth, from the vertex normals: a triangle's own
+  // normal flips across the sharp folds that coarse meshes' quads make, and a frame
+  // following it would twist the wire into itself.
+  std::vector<uint8_t> coherent;
+  std::vector<Vec3> vertex_normal; // per quad-mesh vertex, area-weighted, not normalized
 };
+
+// The unit surface normal at vertex v of triangle i (of cycle c), on the ladder's up side.
+Vec3 surface_normal(const Ladder& l, int32_t c, size_t i, int32_t v) {
+  if (l.coherent[size_t(c)])
+    if (const Vec3 n = normalized(l.vertex_normal[size_t(v)]); norm(n) > 0) return n;
+  return l.up[i];
+}
 
 Ladder make_ladder(const QuadMesh& quads, const TriangleCycle& cycle) {
   const size_t n = cycle.order.size();
@@ -46,6 +60,8 @@ Ladder make_ladder(const QuadMesh& quads, const TriangleCycle& cycle) {
   l.apex_right.resize(n);
   l.up.resize(n);
   l.mobius.resize(size_t(cycle.num_cycles()));
+  l.coherent.resize(size_t(cycle.num_cycles()));
+  l.vertex_normal.resize(quads.positions.size());
   auto tri = [&](size_t i) { return cycle_triangle(quads, cycle.order[i]); };
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const size_t first = size_t(cycle.cycle_start[size_t(c)]), count = size_t(cycle.cycle_start[size_t(c) + 1]) - first;
@@ -62,10 +78,14 @@ Ladder make_ladder(const QuadMesh& quads, const TriangleCycle& cycle) {
       l.entry_is_p[i] = contains(at(k + count - 1), t[0]);
       l.apex_right[i] = k == 0 ? l.entry_is_p[i] : continue_rail(k, l.apex_right[i - 1]);
       const Vec3 p = quads.positions[size_t(t[0])], a = quads.positions[size_t(t[1])], q = quads.positions[size_t(t[2])];
-      const Vec3 normal = normalized(cross(a - p, q - p));
+      const Vec3 area = cross(a - p, q - p), normal = normalized(area);
       l.up[i] = l.apex_right[i] == l.entry_is_p[i] ? normal : normal * -1.0f;
+      for (int32_t v : t) l.vertex_normal[size_t(v)] = l.vertex_normal[size_t(v)] + area;
     }
     l.mobius[size_t(c)] = continue_rail(count, l.apex_right[first + count - 1]) != l.apex_right[first];
+    bool coherent = !l.mobius[size_t(c)];
+    for (size_t k = first; k < first + count && coherent; ++k) coherent = l.apex_right[k] == l.entry_is_p[k];
+    l.coherent[size_t(c)] = coherent;
     // A zero-area triangle has no normal of its own: it borrows its predecessor's.
     size_t valid = count;
     for (size_t k = 0; k < count && valid == count; ++k)
@@ -77,6 +97,16 @@ Ladder make_ladder(const QuadMesh& quads, const TriangleCycle& cycle) {
     }
   }
   return l;
+}
+
+// The normal of the tube's cross-section at point b between a and c: the bisector of the
+// directions in and out, so that on a sharp turn the two segments' tubes stay on either
+// side of the section (a central difference would tilt it into one of them). Zero when
+// b coincides with a neighbour or the curve turns straight back.
+Vec3 section_normal(Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 in = normalized(b - a), out = normalized(c - b);
+  if (norm(in) == 0 || norm(out) == 0) return in + out;
+  return normalized(in + out);
 }
 
 // Uniform cubic B-spline weights at u, as curve.cpp samples the curve.
@@ -129,9 +159,17 @@ PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     // an extra turn of -pi/sides, spread evenly along the loop so no segment twists.
     const int32_t shift = mobius ? width / 2 : 0;
     const double twist = mobius ? 2 * std::numbers::pi * shift / width - std::numbers::pi : 0.0;
+    // The surface normal at each control point, weighted like the point itself.
+    std::vector<Vec3> control_normal(static_cast<size_t>(triangles));
+    for (int32_t k = 0; k < triangles; ++k) {
+      const size_t i = first_triangle + size_t(k);
+      const auto [p, apex, n] = cycle_triangle(quads, cycle.order[i]);
+      const Vec3 sum = surface_normal(ladder, c, i, apex) * 2.0f + surface_normal(ladder, c, i, p) + surface_normal(ladder, c, i, n);
+      control_normal[size_t(k)] = norm(sum) > 0 ? normalized(sum) : ladder.up[i];
+    }
     auto up = [&](int32_t control) {
       const int32_t wrapped = (control % triangles + triangles) % triangles;
-      const Vec3 u = ladder.up[first_triangle + size_t(wrapped)];
+      const Vec3 u = control_normal[size_t(wrapped)];
       return mobius && wrapped != control ? u * -1.0f : u;
     };
     const int32_t base = mesh.num_vertices();
@@ -142,7 +180,9 @@ PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
       Vec3 blended{};
       for (int j = 0; j < 4; ++j) blended = blended + up(segment - 1 + j) * w[size_t(j)];
       // A repeated point has no direction of its own: it keeps the previous frame.
-      if (const Vec3 t = normalized(points[size_t((i + 1) % m)] - points[size_t((i + m - 1) % m)]); norm(t) > 0) tangent = t;
+      if (const Vec3 t = section_normal(points[size_t((i + m - 1) % m)], points[size_t(i)], points[size_t((i + 1) % m)]);
+          norm(t) > 0)
+        tangent = t;
       if (const Vec3 nrm = normalized(blended - tangent * float(dot(blended, tangent))); norm(nrm) > 0) normal = nrm;
       const Vec3 binormal = cross(tangent, normal);
       const double offset = twist * i / m;
@@ -191,9 +231,22 @@ double segment_distance(Vec3 p0, Vec3 p1, Vec3 q0, Vec3 q1) {
 
 } // namespace
 
-double max_wire_radius(const Polylines& centre, int samples_per_segment) {
+namespace {
+
+// The analytic clearance of a tube around closed polylines: the radius, and per point
+// the smallest radius at which anything there may run into the tube, so that a check
+// of larger radii can look only where it matters. Pairs of segments are searched up to
+// `reach` times the local bounds.
+struct Clearance {
+  double radius = 0;
+  std::vector<double> local;
+};
+
+Clearance tube_clearance(const Polylines& centre, int samples_per_segment, double reach) {
   const size_t n = centre.points.size();
-  if (n < 3) return 0;
+  Clearance out;
+  out.local.assign(n, INFINITY);
+  if (n < 3) return out;
   // Per segment: its curve, its length, and the arc length at its start.
   std::vector<int32_t> curve_of(n);
   std::vector<double> length(n), arc(n);
@@ -223,20 +276,37 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
 
   // A wider tube folds where the curve bends: its radius must stay below the radius of
   // curvature, taken as that of the circle through each point and its two neighbours.
+  // And the tube's pieces on either side of a section must stay on their own side of it:
+  // the section at each end of a segment, tilted by the angle between the two sections,
+  // reaches r sin(angle) across the other, which must be less than the segment's extent
+  // along the other's normal. On a hairpin that extent is tiny or even negative.
   double limit = 2.0 * std::max(1, samples_per_segment) * sum_length / double(n);
+  auto section = [&](size_t g) { return section_normal(centre.points[prev(g)], centre.points[g], centre.points[next(g)]); };
   for (size_t g = 0; g < n; ++g) {
     const Vec3 a = centre.points[prev(g)], b = centre.points[g], c = centre.points[next(g)];
     const double twice_area = norm(cross(b - a, c - a));
-    if (twice_area > 0) limit = std::min(limit, norm(b - a) * norm(c - b) * norm(c - a) / (2 * twice_area));
+    if (twice_area > 0) out.local[g] = std::min(out.local[g], norm(b - a) * norm(c - b) * norm(c - a) / (2 * twice_area));
+    if (length[g] == 0) continue;
+    const Vec3 t0 = section(g), t1 = section(next(g)), step = c - b;
+    const double tilt = norm(cross(t0, t1));
+    if (tilt > 0) {
+      const double bound = std::max(0.0, std::min(dot(step, t0), dot(step, t1))) / tilt;
+      out.local[g] = std::min(out.local[g], bound);
+      out.local[next(g)] = std::min(out.local[next(g)], bound);
+    }
   }
+  for (double bound : out.local) limit = std::min(limit, bound);
+  if (!(limit > 0)) return out;
 
   // Parts of the curve that come back near each other: every pair of segments closer
-  // than 2 * limit is found with a uniform grid of that cell size. A pair at distance d
+  // than 2 * limit is found with a uniform grid of at least that cell size. A pair at distance d
   // forbids the radii in (d/2, arc/pi): up to d/2 the tubes stay apart, and from arc/pi
   // the pair lies within one bend of the tube, which the folding bound already covers.
-  const double cell = 2 * limit;
-  if (!(cell > 0)) return 0;
+  // Cells no smaller than the mean segment, so that a long segment spans few of them,
+  // and few enough per axis that a cell's number fits 63 bits.
   const Box3 box = bounding_box(centre.points);
+  const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+  const double cell = std::max({2 * limit * reach, sum_length / double(n), extent / double(1 << 20)});
   auto cell_of = [&](double v, double lo) { return int64_t(std::floor((v - lo) / cell)); };
   const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1;
   auto key = [&](int64_t x, int64_t y, int64_t z) { return (z * ny + y) * nx + x; };
@@ -254,14 +324,18 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
   auto consider = [&](size_t g, size_t h) {
     if (g == h || next(g) == h || next(h) == g) return;
     const double d = segment_distance(centre.points[g], centre.points[next(g)], centre.points[h], centre.points[next(h)]);
-    if (d >= cell) return;
+    if (d >= 2 * limit * reach) return;
     double between = INFINITY;
     if (curve_of[g] == curve_of[h]) {
       const size_t lo = std::min(g, h), hi = std::max(g, h);
       const double inner = arc[hi] - arc[lo] - length[lo];
       between = std::min(inner, total[size_t(curve_of[g])] - inner - length[lo] - length[hi]);
     }
-    if (between / std::numbers::pi > d / 2) forbidden.push_back({d / 2, between / std::numbers::pi});
+    if (between / std::numbers::pi > d / 2) {
+      if (d / 2 < limit) forbidden.push_back({d / 2, between / std::numbers::pi});
+      out.local[g] = std::min(out.local[g], d / 2);
+      out.local[h] = std::min(out.local[h], d / 2);
+    }
   };
   // Neighbouring cells hold the segments within one cell size of those in this cell.
   for (size_t e = 0; e < entries.size();) {
@@ -284,10 +358,48 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
   // The largest radius up to `limit` that no pair forbids: sweep the intervals by
   // decreasing lower end, dropping to the lower end of each one that covers the radius.
   std::sort(forbidden.begin(), forbidden.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  double r = limit;
+  out.radius = limit;
   for (const auto& [lo, hi] : forbidden)
-    if (lo < r && r < hi) r = lo;
-  return r;
+    if (lo < out.radius && out.radius < hi) out.radius = lo;
+  return out;
+}
+
+} // namespace
+
+double max_wire_radius(const Polylines& centre, int samples_per_segment) {
+  return tube_clearance(centre, samples_per_segment, 1.0).radius;
+}
+
+double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
+  const Polylines centre = cycle_curves(quads, cycle, options.curve);
+  constexpr double step = 1.1, steps = 3, reach = 1.35; // reach >= step^steps
+  const Clearance clearance = tube_clearance(centre, k, reach);
+  double radius = clearance.radius;
+  if (!(radius > 0)) return 0;
+  // Only the pieces of tube within two points of a spot whose bound is below the largest
+  // radius tried can collide; the check looks at those pieces alone.
+  const int32_t width = options.shape == WireShape::ribbon ? 1 : options.sides; // faces per point
+  std::vector<uint8_t> near(centre.points.size());
+  for (int32_t c = 0; c < centre.size(); ++c) {
+    const int32_t first = centre.start[size_t(c)], m = centre.start[size_t(c) + 1] - first;
+    for (int32_t i = 0; i < m; ++i)
+      if (clearance.local[size_t(first + i)] < radius * reach)
+        for (int32_t j = -2; j <= 2; ++j) near[size_t(first + ((i + j) % m + m) % m)] = 1;
+  }
+  for (int s = 0; s < steps; ++s) {
+    ConstantWireOptions trial = options;
+    trial.radius = radius * step;
+    const PolygonMesh wire = constant_wire(quads, cycle, trial);
+    PolygonMesh pieces;
+    pieces.positions = wire.positions;
+    for (size_t g = 0; g < near.size(); ++g)
+      if (near[g])
+        for (int32_t f = int32_t(g) * width; f < int32_t(g + 1) * width; ++f) pieces.add_face(wire.face(f));
+    if (check_printability(pieces, {.thickness = false}).self_intersecting) break;
+    radius = trial.radius;
+  }
+  return radius;
 }
 
 PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
@@ -302,36 +414,45 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
 
   // Two rungs per triangle: where the curve enters its trapezoid and where it leaves.
   // The bilinear formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's
-  // rotation order; v[m][n] is the corner that is p_{1-m,1-n} when s = t = 1.
+  // rotation order; corner v_mn is p_(1-m)(1-n) when s = t = 1.
   const size_t triangles = cycle.order.size();
-  std::vector<Vec3> left(2 * triangles), right(2 * triangles), normal(2 * triangles);
+  std::vector<Vec3> left(2 * triangles), right(2 * triangles), left_normal(2 * triangles), right_normal(2 * triangles);
   const float w0s = float((1 - options.s) / 2), w1s = float((1 + options.s) / 2);
   const float w0t = float((1 - options.t) / 2), w1t = float((1 + options.t) / 2);
+  // Corners on the p side, then the n side, each as (apex rail, other rail).
+  auto trapezoid = [&](Vec3 p, Vec3 a, Vec3 q) {
+    return std::array<std::pair<Vec3, Vec3>, 2>{{{a * w1s + (q * w0t + p * w1t) * w0s, a * w0s + (q * w0t + p * w1t) * w1s},
+                                                 {a * w1s + (p * w0t + q * w1t) * w0s, a * w0s + (p * w0t + q * w1t) * w1s}}};
+  };
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const size_t first = size_t(cycle.cycle_start[size_t(c)]), count = size_t(cycle.cycle_start[size_t(c) + 1]) - first;
     const float closing = ladder.mobius[size_t(c)] ? -1.0f : 1.0f;
     for (size_t k = 0; k < count; ++k) {
       const size_t i = first + k;
       const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
-      const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
-      const Vec3 v00 = a * w0s + (q * w0t + p * w1t) * w1s, v10 = a * w1s + (q * w0t + p * w1t) * w0s;
-      const Vec3 v01 = a * w0s + (p * w0t + q * w1t) * w1s, v11 = a * w1s + (p * w0t + q * w1t) * w0s;
-      // Corners on the p side, then the n side, each as (apex rail, other rail).
-      const std::array<std::pair<Vec3, Vec3>, 2> sides{{{v10, v00}, {v11, v01}}};
-      const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
-      for (int r = 0; r < 2; ++r) {
-        const auto [apex_corner, other_corner] = sides[size_t(r == 0 ? !entry_p : entry_p)];
-        left[2 * i + size_t(r)] = apex_right ? other_corner : apex_corner;
-        right[2 * i + size_t(r)] = apex_right ? apex_corner : other_corner;
+      const auto corners = trapezoid(quads.positions[size_t(pi)], quads.positions[size_t(ai)], quads.positions[size_t(ni)]);
+      // Smooth normals interpolate like the corners. Otherwise the rungs either side of
+      // a quad side share the normal of its two triangles, so a connector is a prism.
+      auto normals = trapezoid(surface_normal(ladder, c, i, pi), surface_normal(ladder, c, i, ai), surface_normal(ladder, c, i, ni));
+      if (!ladder.coherent[size_t(c)]) {
+        const Vec3 before = k == 0 ? ladder.up[first + count - 1] * closing : ladder.up[i - 1];
+        const Vec3 after = k + 1 == count ? ladder.up[first] * closing : ladder.up[i + 1];
+        const Vec3 entry = normalized(before + ladder.up[i]), exit = normalized(ladder.up[i] + after);
+        normals[size_t(!ladder.entry_is_p[i])] = {entry, entry};
+        normals[size_t(ladder.entry_is_p[i])] = {exit, exit};
       }
-      // The rungs either side of a quad side share the normal of its two triangles, so a
-      // connector is a straight prism.
-      const Vec3 before = k == 0 ? ladder.up[first + count - 1] * closing : ladder.up[i - 1];
-      const Vec3 after = k + 1 == count ? ladder.up[first] * closing : ladder.up[i + 1];
-      normal[2 * i] = normalized(before + ladder.up[i]);
-      normal[2 * i + 1] = normalized(ladder.up[i] + after);
-      for (int r = 0; r < 2; ++r)
-        if (norm(normal[2 * i + size_t(r)]) == 0) normal[2 * i + size_t(r)] = ladder.up[i];
+      const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
+      for (size_t r = 0; r < 2; ++r) {
+        const size_t side = r == 0 ? !entry_p : entry_p, rung = 2 * i + r;
+        const auto [apex_corner, other_corner] = corners[side];
+        const auto [apex_normal, other_normal] = normals[side];
+        left[rung] = apex_right ? other_corner : apex_corner;
+        right[rung] = apex_right ? apex_corner : other_corner;
+        left_normal[rung] = normalized(apex_right ? other_normal : apex_normal);
+        right_normal[rung] = normalized(apex_right ? apex_normal : other_normal);
+        if (norm(left_normal[rung]) == 0) left_normal[rung] = ladder.up[i];
+        if (norm(right_normal[rung]) == 0) right_normal[rung] = ladder.up[i];
+      }
     }
   }
 
@@ -352,8 +473,8 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     if (ribbon) {
       control.positions.insert(control.positions.end(), {left[r], right[r]});
     } else {
-      const Vec3 h = normal[r] * float(thickness / 2);
-      control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
+      const Vec3 hl = left_normal[r] * float(thickness / 2), hr = right_normal[r] * float(thickness / 2);
+      control.positions.insert(control.positions.end(), {left[r] - hl, left[r] + hl, right[r] + hr, right[r] - hr});
     }
   }
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {

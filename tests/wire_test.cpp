@@ -23,7 +23,9 @@ CurveResult curve_of(PolygonMesh mesh, int samples = 2) {
   return make_curve(repair(std::move(mesh), "mesh").mesh, {.curve = {.samples = samples}});
 }
 
-double auto_radius(const CurveResult& curve, int samples = 2) { return max_wire_radius(curve.curves, samples); }
+double auto_radius(const CurveResult& curve, int samples = 2) {
+  return auto_wire_radius(curve.quads, curve.cycle, {.curve = {.samples = samples}});
+}
 
 PolygonMesh constant(const CurveResult& curve, double radius, WireShape shape = WireShape::wire, int samples = 2) {
   return constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .curve = {.samples = samples}});

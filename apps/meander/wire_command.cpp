@@ -57,7 +57,7 @@ void run_wire(const WireArgs& a) {
   PolygonMesh wire;
   if (constant) {
     if (radius == 0) {
-      radius = max_wire_radius(curve.curves, job.curve.smoothing == Smoothing::none ? 1 : job.curve.samples);
+      radius = auto_wire_radius(curve.quads, curve.cycle, {.shape = shape, .sides = a.sides, .curve = job.curve});
       log.lap("radius");
       if (!(radius > 0)) throw TopologyError(a.input + ": the curve touches itself: no wire radius avoids a self-intersection");
     }

@@ -56,6 +56,14 @@ PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
 // the surface's detail anyway. Expected O(points) with a uniform grid.
 double max_wire_radius(const Polylines& centre, int samples_per_segment);
 
+// `--radius auto`: the largest radius for constant_wire(quads, cycle, options) without
+// self-intersection. Starts from max_wire_radius (a bound that holds, but up to about a
+// third below the truth) and grows it in steps of 10% while the tube, checked where the
+// bound is tight (printability.h), stays clear: so 1.1 times the result collides, or
+// the result is a third above the bound. `options.radius` is ignored. Returns 0 if the
+// curve touches itself.
+double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
+
 // Variable diameter (Section 4, second method). s and t in [0, 1] size the trapezoid
 // drawn inside each triangle of the cycle with the paper's bilinear formula (the
 // triangle read as a quad whose apex is doubled): s across the direction of travel (the
