@@ -1,5 +1,6 @@
 #include "meander/render.h"
 
+#include "io/formats.h"
 #include "meander/error.h"
 
 #include <embree3/rtcore.h>
@@ -72,7 +73,8 @@ using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 // What shading needs of each Embree geometry, indexed by its id.
 struct GeometryInfo {
   V3 albedo;
-  bool curve = false, occluder_only = false;
+  bool curve = false;
+  MeshStyle style = MeshStyle::shaded;
   std::vector<uint32_t> triangles; // 3 vertex ids per triangle
   std::vector<Vec3> normals;       // per vertex, unnormalised area-weighted
 };
@@ -95,8 +97,6 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   c.aspect = double(o.width) / o.height;
   c.tan_half_height = std::tan(25 * pi / 180 / 2);
 
-  // Centre on the extent of the points across the view, then back off until every
-  // point is inside the frame with a 6% margin on each side.
   Box3 box;
   auto each_point = [&](auto&& f) {
     for (const SceneMesh& m : scene.meshes)
@@ -107,6 +107,64 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   each_point([&](V3 p) { box.extend({float(p.x), float(p.y), float(p.z)}); });
   if (box.empty()) box.extend({0, 0, 0});
   const V3 centre = (V3(box.min) + V3(box.max)) * 0.5;
+  if (o.framing == Framing::sphere) {
+    // The sphere's outline is a circle of half-angle asin(R / distance) around the view
+    // axis: it fits the narrower side of the picture with a 6% margin.
+    const double radius = std::max(0.5 * box.diagonal(), 1e-6);
+    const double half_angle = std::atan(0.88 * c.tan_half_height * std::min(1.0, c.aspect));
+    c.eye = centre - c.forward * (radius / std::sin(half_angle));
+    return c;
+  }
+  if (o.framing == Framing::silhouette) {
+    // A point p is inside the picture's right edge when n . (p - eye) >= 0 with
+    // n = forward * tan_x - right; the edge plane touches the points when
+    // n . eye = min over p of n . p. The left and right planes together fix the eye's
+    // sideways and forward coordinates, the top and bottom planes its upward and forward
+    // ones; the eye takes the forward coordinate further back, which leaves the other
+    // pair of planes equally clear of the points on both sides.
+    const double tan_y = c.tan_half_height * 0.94, tan_x = tan_y * c.aspect;
+    double right_min = INFINITY, left_min = INFINITY, top_min = INFINITY, bottom_min = INFINITY;
+    each_point([&](V3 p) {
+      const V3 d = p - centre;
+      const double x = dot(d, c.right), y = dot(d, c.up), z = dot(d, c.forward);
+      right_min = std::min(right_min, z * tan_x - x), left_min = std::min(left_min, z * tan_x + x);
+      top_min = std::min(top_min, z * tan_y - y), bottom_min = std::min(bottom_min, z * tan_y + y);
+    });
+    const double along = std::min((right_min + left_min) / (2 * tan_x), (top_min + bottom_min) / (2 * tan_y));
+    c.eye = centre + c.right * ((left_min - right_min) / 2) + c.up * ((bottom_min - top_min) / 2) + c.forward * along;
+    // A single point (or points along the view axis) would put the eye on them.
+    double farthest = 0;
+    each_point([&](V3 p) { farthest = std::max(farthest, dot(p - c.eye, c.forward)); });
+    if (farthest <= 1e-9 * std::max(box.diagonal(), 1.0)) c.eye = c.eye - c.forward;
+    // The pair of planes that do not touch are equally clear of the points, but their
+    // extreme points lie at different depths, so the picture is not quite centred between
+    // them: move the eye sideways and upwards until the extremes' projections are
+    // symmetric (exact once the extreme points stop changing; a few rounds do).
+    for (int round = 0; round < 4; ++round) {
+      struct Extreme {
+        double lo = INFINITY, hi = -INFINITY, lo_depth = 1, hi_depth = 1, lo_at = 0, hi_at = 0;
+      } across, upward;
+      each_point([&](V3 p) {
+        const V3 d = p - c.eye;
+        const double depth = dot(d, c.forward);
+        if (depth <= 0) return;
+        for (auto [extreme, axis] : {std::pair{&across, c.right}, std::pair{&upward, c.up}}) {
+          const double at = dot(d, axis), t = at / depth;
+          if (t < extreme->lo) extreme->lo = t, extreme->lo_depth = depth, extreme->lo_at = at;
+          if (t > extreme->hi) extreme->hi = t, extreme->hi_depth = depth, extreme->hi_at = at;
+        }
+      });
+      // The shift s that makes (lo_at - s) / lo_depth = -(hi_at - s) / hi_depth.
+      auto shift = [](const Extreme& e) {
+        return (e.lo_at / e.lo_depth + e.hi_at / e.hi_depth) / (1 / e.lo_depth + 1 / e.hi_depth);
+      };
+      c.eye = c.eye + c.right * shift(across) + c.up * shift(upward);
+    }
+    return c;
+  }
+
+  // Centre on the extent of the points across the view, then back off until every
+  // point is inside the frame with a 6% margin on each side.
   double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
   each_point([&](V3 p) {
     const V3 d = p - centre;
@@ -141,13 +199,13 @@ double curve_length(const Polylines& c) {
   double length = 0;
   for (int32_t k = 0; k < c.size(); ++k) {
     const auto pts = c.polyline(k);
-    for (size_t i = 0; i < pts.size(); ++i) length += norm(pts[(i + 1) % pts.size()] - pts[i]);
+    for (size_t i = 0; i + (c.closed(k) ? 0 : 1) < pts.size(); ++i) length += norm(pts[(i + 1) % pts.size()] - pts[i]);
   }
   return length;
 }
 
 void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
-  GeometryInfo g{.albedo = linear(m.color), .occluder_only = m.occluder_only};
+  GeometryInfo g{.albedo = linear(m.color), .style = m.style};
   const PolygonMesh& mesh = m.mesh;
   g.normals.assign(mesh.positions.size(), Vec3{});
   for (int32_t f = 0; f < mesh.num_faces(); ++f) {
@@ -155,7 +213,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
     for (size_t i = 1; i + 1 < face.size(); ++i) {
       const uint32_t a = face[0], b = face[i], c = face[i + 1];
       g.triangles.insert(g.triangles.end(), {a, b, c});
-      if (m.occluder_only) continue;
+      if (m.style == MeshStyle::hidden) continue;
       // The cross product's length is twice the area: area-weighted for free.
       const Vec3 n = meander::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
       for (uint32_t v : {a, b, c}) g.normals[v] = g.normals[v] + n;
@@ -173,7 +231,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(uint32_t), g.triangles.size() / 3));
   std::copy(g.triangles.begin(), g.triangles.end(), indices);
-  rtcSetGeometryMask(geometry, m.occluder_only ? occluder_mask : drawn_mask);
+  rtcSetGeometryMask(geometry, m.style == MeshStyle::shaded ? drawn_mask : occluder_mask);
   rtcCommitGeometry(geometry);
   const unsigned id = rtcAttachGeometry(rtc, geometry);
   rtcReleaseGeometry(geometry);
@@ -181,13 +239,20 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
   info[id] = std::move(g);
 }
 
-void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, float radius, std::vector<GeometryInfo>& info) {
+// `radius` gives the curve's radius at each point: one value for tubes, growing with the
+// depth for ribbons of constant screen width (linear along a segment, as depth is).
+template <class Radius>
+void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle style, Radius radius,
+                std::vector<GeometryInfo>& info) {
   // A closed loop of n points is n segments: the first point is repeated at the end.
+  // An open polyline of n points is n - 1 segments.
   size_t points = 0, segments = 0;
   for (int32_t i = 0; i < k.curves.size(); ++i)
-    if (const size_t n = k.curves.polyline(i).size(); n >= 2) points += n + 1, segments += n;
+    if (const size_t n = k.curves.polyline(i).size(); n >= 2)
+      points += k.curves.closed(i) ? n + 1 : n, segments += k.curves.closed(i) ? n : n - 1;
   if (segments == 0) return;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+  RTCGeometry geometry = rtcNewGeometry(
+      device, style == CurveStyle::tube ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
   auto* vertices = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
   auto* indices = static_cast<uint32_t*>(
@@ -196,10 +261,11 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, float radi
   for (int32_t i = 0; i < k.curves.size(); ++i) {
     const auto loop = k.curves.polyline(i);
     if (loop.size() < 2) continue;
-    for (size_t j = 0; j <= loop.size(); ++j) {
+    const size_t ends = k.curves.closed(i) ? loop.size() : loop.size() - 1;
+    for (size_t j = 0; j <= ends; ++j) {
       const Vec3 q = loop[j % loop.size()];
-      if (j < loop.size()) indices[s++] = uint32_t(p);
-      vertices[4 * p] = q.x, vertices[4 * p + 1] = q.y, vertices[4 * p + 2] = q.z, vertices[4 * p + 3] = radius;
+      if (j < ends) indices[s++] = uint32_t(p);
+      vertices[4 * p] = q.x, vertices[4 * p + 1] = q.y, vertices[4 * p + 2] = q.z, vertices[4 * p + 3] = radius(q);
       ++p;
     }
   }
@@ -217,18 +283,39 @@ struct Hit {
   V3 position, normal;
 };
 
+// How far behind a surface a curve still shows: curves are drawn over the surfaces they
+// lie on, so a surface hides a curve only if it is more than `absolute` + `relative` *
+// (the surface's distance) in front of it.
+struct CurveSlack {
+  double absolute = 0, relative = 0;
+};
+
 class Tracer {
 public:
-  Tracer(RTCScene scene, const std::vector<GeometryInfo>& info) : scene_(scene), info_(info) {}
+  // ribbons: the curves are ribbons, which face each ray and stand for marks on the
+  // picture rather than objects in the scene.
+  Tracer(RTCScene scene, const std::vector<GeometryInfo>& info, bool has_curves, CurveSlack slack, bool ribbons)
+      : scene_(scene), info_(info), has_curves_(has_curves), slack_(slack), ribbons_(ribbons) {}
 
   Hit trace(V3 origin, V3 direction) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    set_ray(rh.ray, origin, direction, 0, std::numeric_limits<float>::infinity(), drawn_mask | curve_mask | occluder_mask);
+    set_ray(rh.ray, origin, direction, 0, std::numeric_limits<float>::infinity(), drawn_mask | occluder_mask);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &context, &rh);
+    if (has_curves_) {
+      RTCRayHit curve{};
+      const float far = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                            ? std::numeric_limits<float>::infinity()
+                            : float(rh.ray.tfar * (1 + slack_.relative) + slack_.absolute);
+      set_ray(curve.ray, origin, direction, 0, far, curve_mask);
+      curve.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      curve.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_, &context, &curve);
+      if (curve.hit.geomID != RTC_INVALID_GEOMETRY_ID) rh = curve;
+    }
     Hit h;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.found = true;
@@ -236,7 +323,7 @@ public:
     h.position = origin + direction * rh.ray.tfar;
     const GeometryInfo& g = info_[h.geometry];
     V3 n = normalized(V3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-    if (!g.curve && !g.occluder_only) {
+    if (!g.curve && g.style != MeshStyle::hidden) {
       const uint32_t* t = &g.triangles[3 * size_t(rh.hit.primID)];
       const double u = rh.hit.u, v = rh.hit.v;
       const V3 smooth = normalized(V3(g.normals[t[0]]) * (1 - u - v) + V3(g.normals[t[1]]) * u + V3(g.normals[t[2]]) * v);
@@ -255,7 +342,9 @@ public:
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
-    set_ray(ray, origin, direction, 0, far, drawn_mask | curve_mask);
+    // Ribbons face each ray's origin, so they would cast odd shadows: they are drawn on
+    // the picture rather than standing in the scene.
+    set_ray(ray, origin, direction, 0, far, ribbons_ ? drawn_mask : drawn_mask | curve_mask);
     rtcOccluded1(scene_, &context, &ray);
     return ray.tfar < 0;
   }
@@ -268,6 +357,9 @@ private:
   }
   RTCScene scene_;
   const std::vector<GeometryInfo>& info_;
+  bool has_curves_;
+  CurveSlack slack_;
+  bool ribbons_;
 };
 
 } // namespace
@@ -357,9 +449,26 @@ Image render(const Scene& scene, const RenderOptions& o) {
   rtcSetSceneFlags(rtc.get(), RTC_SCENE_FLAG_ROBUST);
   std::vector<GeometryInfo> info;
   for (const SceneMesh& m : scene.meshes) add_mesh(device.get(), rtc.get(), m, info);
-  for (const SceneCurves& k : scene.curves) add_curves(device.get(), rtc.get(), k, float(radius), info);
+  // A ribbon's radius grows with the depth so that it keeps the width it has at the
+  // centre in pixels; the smallest depth keeps points behind the eye well-formed.
+  const double centre_depth = std::max(dot(centre - camera.eye, camera.forward), 1e-9);
+  const bool ribbons = o.curve_style == CurveStyle::ribbon;
+  for (const SceneCurves& k : scene.curves) {
+    if (ribbons)
+      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3 q) {
+        return float(radius * std::max(dot(V3(q) - camera.eye, camera.forward), 1e-6 * centre_depth) / centre_depth);
+      }, info);
+    else
+      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3) { return float(radius); }, info);
+  }
   rtcCommitScene(rtc.get());
-  const Tracer tracer(rtc.get(), info);
+  // Two tube widths, or four ribbon widths at the surface's depth (a ribbon turned to
+  // face the eye dips further into a slanted surface than a tube does): enough for a
+  // curve a little under the surface it covers (a B-spline cuts the corners of its
+  // control polygon, and a tube's core is inside the surface), far too little for a
+  // curve on the far side of a solid.
+  const CurveSlack slack = ribbons ? CurveSlack{.relative = 8 * radius / centre_depth} : CurveSlack{.absolute = 4 * radius};
+  const Tracer tracer(rtc.get(), info, !scene.curves.empty(), slack, ribbons);
 
   const V3 key = normalized(camera.forward * -0.75 + camera.up * 0.55 + camera.right * -0.35);
   const V3 background = linear(o.background.color);
@@ -386,9 +495,23 @@ Image render(const Scene& scene, const RenderOptions& o) {
             const double sy = (1 - 2 * (y + jy) / o.height) * camera.tan_half_height;
             const V3 direction = normalized(camera.forward + camera.right * sx + camera.up * sy);
             const Hit hit = tracer.trace(camera.eye, direction);
-            if (!hit.found || info[hit.geometry].occluder_only) continue;
+            if (!hit.found || info[hit.geometry].style == MeshStyle::hidden) continue;
             const GeometryInfo& g = info[hit.geometry];
             const V3 n = hit.normal;
+            if (g.curve && ribbons) {
+              sum = sum + g.albedo;
+              coverage += 1;
+              continue;
+            }
+            if (g.style == MeshStyle::faint) {
+              // A light grey let through by the background behind it: lit, without
+              // shadows, so the shape shows without competing with the curves.
+              constexpr double opacity = 0.5;
+              const double light = 0.5 + 0.25 * std::max(0.0, dot(n, key)) + 0.1 * dot(n, camera.up);
+              sum = sum + V3{light, light, light} * opacity;
+              coverage += opacity;
+              continue;
+            }
             // Cosine-weighted directions around n for ambient occlusion.
             const V3 a = std::abs(n.x) > 0.5 ? V3{0, 1, 0} : V3{1, 0, 0};
             const V3 b1 = normalized(cross(n, a)), b2 = cross(n, b1);
@@ -426,6 +549,34 @@ Image render(const Scene& scene, const RenderOptions& o) {
     }
   });
   return image;
+}
+
+std::filesystem::path turntable_frame_path(const std::filesystem::path& path, int32_t frame, int32_t frames) {
+  std::string number = std::to_string(frame);
+  const size_t digits = std::max<size_t>(3, std::to_string(std::max(frames - 1, 0)).size());
+  number.insert(0, digits - std::min(digits, number.size()), '0');
+  std::filesystem::path out = path;
+  out.replace_filename(path.stem().string() + "_" + number + path.extension().string());
+  return out;
+}
+
+std::vector<std::filesystem::path> write_turntable(const Scene& scene, const RenderOptions& options, int32_t frames,
+                                                   const std::filesystem::path& path) {
+  constexpr int32_t max_frames = 100000;
+  if (frames < 1 || frames > max_frames)
+    throw UsageError("turntable of " + std::to_string(frames) + " frames: expected 1.." + std::to_string(max_frames));
+  if (const std::string extension = io::lowercase_extension(path); extension != ".png")
+    throw UsageError(path.string() + ": unknown image format '" + extension + "' (expected .png)");
+  std::vector<std::filesystem::path> written;
+  for (int32_t k = 0; k < frames; ++k) {
+    RenderOptions frame = options;
+    frame.framing = Framing::sphere;
+    // Frame 0 keeps the view's azimuth as given: it is the still picture from that view.
+    frame.view.azimuth = options.view.azimuth + 360.0 * k / frames;
+    written.push_back(turntable_frame_path(path, k, frames));
+    write_png(render(scene, frame), written.back());
+  }
+  return written;
 }
 
 } // namespace meander

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -79,7 +80,7 @@ TEST(Render, OccluderHidesTheCurveBehindItAndIsNotDrawn) {
   // and it must not show itself either, so the whole picture stays background.
   const RenderOptions options{.width = 160, .height = 120, .view = parse_view("front"), .curve_width = 4};
   Scene behind;
-  behind.meshes.push_back({.mesh = sphere(4000), .occluder_only = true});
+  behind.meshes.push_back({.mesh = sphere(4000), .style = MeshStyle::hidden});
   behind.curves.push_back({.curves = circle_on_sphere(-0.6)});
   EXPECT_EQ(object_pixels(render(behind, options)), 0);
 
@@ -215,6 +216,205 @@ TEST(RenderCli, BadOptionsAreUsageErrorsAndLeaveNoPicture) {
   const auto no_file = run_cli({"render", (dir / "missing.obj").string(), "-o", png.string()});
   EXPECT_EQ(no_file.exit_code, 1);
   EXPECT_FALSE(fs::exists(png));
+}
+
+// The bounding box of the pixels that are not background.
+struct Extent {
+  int lo_x = 1 << 30, hi_x = -1, lo_y = 1 << 30, hi_y = -1;
+  double centre_x() const { return (lo_x + hi_x) / 2.0; }
+  double centre_y() const { return (lo_y + hi_y) / 2.0; }
+};
+Extent object_extent(const Image& image) {
+  Extent e;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (!is_background(image, x, y))
+        e.lo_x = std::min(e.lo_x, x), e.hi_x = std::max(e.hi_x, x), e.lo_y = std::min(e.lo_y, y), e.hi_y = std::max(e.hi_y, y);
+  return e;
+}
+
+TEST(RenderFraming, FitFillsThePictureWithTheSilhouetteCentred) {
+  // Tricky: a torus seen from above at an angle is wider than tall and its near side
+  // projects larger than its far side, so centring its bounds does not centre its picture.
+  Scene scene;
+  scene.meshes.push_back({.mesh = torus(3000)});
+  RenderOptions options{.width = 200, .height = 200, .view = parse_view("20,50"), .samples = 1};
+  const Extent bounds = object_extent(render(scene, options));
+  options.framing = Framing::silhouette;
+  const Extent fit = object_extent(render(scene, options));
+  // The wider side touches the 3% margins; the other side is centred.
+  EXPECT_NEAR(fit.hi_x - fit.lo_x + 1, 0.94 * 200, 2.5);
+  EXPECT_NEAR(fit.centre_x(), 99.5, 1.5);
+  EXPECT_NEAR(fit.centre_y(), 99.5, 1.5);
+  EXPECT_GT(fit.hi_x - fit.lo_x, bounds.hi_x - bounds.lo_x + 6);
+}
+
+TEST(RenderFraming, SphereFramingKeepsTheDistanceWhateverTheView) {
+  // A long box: its outline changes a lot as it turns, the camera's distance must not,
+  // and no view may cut it.
+  PolygonMesh box;
+  for (int i = 0; i < 8; ++i) box.positions.push_back({i & 1 ? 2.f : -2.f, i & 2 ? 0.3f : -0.3f, i & 4 ? 0.3f : -0.3f});
+  for (auto f : {std::array{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
+    box.add_face(f);
+  Scene scene;
+  scene.meshes.push_back({.mesh = box});
+  RenderOptions options{.width = 160, .height = 120, .samples = 1, .framing = Framing::sphere};
+  for (int azimuth = 0; azimuth < 360; azimuth += 30) {
+    options.view = {double(azimuth), 20};
+    const Extent e = object_extent(render(scene, options));
+    EXPECT_GE(std::min({e.lo_x, e.lo_y, 159 - e.hi_x, 119 - e.hi_y}), 6) << azimuth;
+  }
+  // From the front, the bounding sphere (radius sqrt(4.18)) fills 88% of the height at
+  // distance d; the box's front face, 4 units long at depth d - 0.3, takes its share.
+  options.view = parse_view("front");
+  const Extent front = object_extent(render(scene, options));
+  const double tan_half = std::tan(12.5 * std::numbers::pi / 180);
+  const double d = std::sqrt(4.18) / std::sin(std::atan(0.88 * tan_half));
+  EXPECT_NEAR(front.hi_x - front.lo_x + 1, 4 / (d - 0.3) / (2 * tan_half) * 120, 2);
+  EXPECT_NEAR(front.centre_x(), 79.5, 1);
+}
+
+TEST(RenderTurntable, FramesAreNumberedDeterministicAndStartAtTheStill) {
+  EXPECT_EQ(turntable_frame_path("out/spin.png", 7, 36), fs::path("out/spin_007.png"));
+  EXPECT_EQ(turntable_frame_path("spin.png", 999, 1000), fs::path("spin_999.png"));
+  EXPECT_EQ(turntable_frame_path("spin.png", 7, 1001), fs::path("spin_0007.png"));
+
+  Scene scene;
+  scene.meshes.push_back({.mesh = torus(800)});
+  scene.curves.push_back({.curves = circle_on_sphere(0.2)});
+  const RenderOptions options{.width = 64, .height = 48, .view = parse_view("30,20"), .samples = 2};
+  const auto dir = output_dir();
+  const auto frames = write_turntable(scene, options, 4, dir / "t.png");
+  ASSERT_EQ(frames.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_TRUE(fs::exists(dir / ("t_00" + std::to_string(k) + ".png")));
+  const std::string first = test::read_file(frames[0]), second = test::read_file(frames[1]);
+  write_turntable(scene, options, 4, dir / "again.png");
+  EXPECT_EQ(test::read_file(dir / "again_000.png"), first);
+  EXPECT_EQ(test::read_file(dir / "again_001.png"), second);
+  EXPECT_NE(first, second);
+  RenderOptions still = options;
+  still.framing = Framing::sphere;
+  write_png(render(scene, still), dir / "still.png");
+  EXPECT_EQ(test::read_file(dir / "still.png"), first);
+
+  EXPECT_THROW(write_turntable(scene, options, 0, dir / "none.png"), UsageError);
+  EXPECT_THROW(write_turntable(scene, options, 2, dir / "none.jpg"), UsageError);
+  EXPECT_FALSE(fs::exists(dir / "none_000.png"));
+  EXPECT_FALSE(fs::exists(dir / "none_000.jpg"));
+}
+
+// Runs of object pixels down column x: their lengths, top to bottom.
+std::vector<int> vertical_runs(const Image& image, int x) {
+  std::vector<int> runs;
+  bool inside = false;
+  for (int y = 0; y < image.height; ++y) {
+    // At least half covered: the run's length is then the curve's width, not its blur.
+    const uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
+    const bool object = p[1] < 190;
+    if (object && !inside) runs.push_back(0);
+    if (object) ++runs.back();
+    inside = object;
+  }
+  return runs;
+}
+
+TEST(RenderCurveStyle, RibbonsKeepTheirPixelWidthAtAnyDepthTubesDoNot) {
+  // Two straight open segments across the view, one three times as far as the other.
+  Scene scene;
+  Polylines lines;
+  lines.points = {{-1, 0.6f, 2}, {1, 0.6f, 2}, {-3, -1.2f, -4}, {3, -1.2f, -4}};
+  lines.start = {0, 2, 4};
+  lines.open = {1, 1};
+  scene.curves.push_back({.curves = lines});
+  RenderOptions options{.width = 160, .height = 160, .view = parse_view("front"), .samples = 16, .curve_width = 6};
+  options.curve_style = CurveStyle::ribbon;
+  const std::vector<int> ribbon = vertical_runs(render(scene, options), 80);
+  ASSERT_EQ(ribbon.size(), 2u);
+  EXPECT_NEAR(ribbon[0], 6, 1);
+  EXPECT_NEAR(ribbon[1], 6, 1);
+  options.curve_style = CurveStyle::tube;
+  const std::vector<int> tube = vertical_runs(render(scene, options), 80);
+  ASSERT_EQ(tube.size(), 2u);
+  EXPECT_GT(tube[0], tube[1] + 2); // the near tube is thicker
+}
+
+TEST(RenderOccluder, FaintShowsTheSurfaceInLightGreyAndStillHidesTheCurveBehind) {
+  const RenderOptions options{.width = 160, .height = 120, .view = parse_view("front"), .curve_width = 4};
+  auto red_pixels = [](const Image& image) {
+    int64_t count = 0;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) count += image.rgba[i] > image.rgba[i + 1] + 40;
+    return count;
+  };
+  for (const CurveStyle style : {CurveStyle::tube, CurveStyle::ribbon}) {
+    Scene scene;
+    scene.meshes.push_back({.mesh = sphere(4000), .style = MeshStyle::faint});
+    scene.curves.push_back({.curves = circle_on_sphere(-0.6)});
+    RenderOptions o = options;
+    o.curve_style = style;
+    const Image faint = render(scene, o);
+    EXPECT_EQ(red_pixels(faint), 0);
+    int64_t light_grey = 0;
+    for (size_t i = 0; i < faint.rgba.size(); i += 4) {
+      const uint8_t r = faint.rgba[i], g = faint.rgba[i + 1], b = faint.rgba[i + 2];
+      light_grey += r == g && g == b && r >= 200 && r < 250;
+    }
+    // The sphere's disc (about 0.88 * 120 pixels across) is light grey.
+    EXPECT_GT(light_grey, 0.8 * 3.14159 / 4 * (0.88 * 120) * (0.88 * 120));
+    scene.meshes[0].style = MeshStyle::hidden;
+    EXPECT_EQ(object_pixels(render(scene, o)), 0);
+    // In front of the surface, the curve shows over the faint grey.
+    scene.meshes[0].style = MeshStyle::faint;
+    scene.curves[0].curves = circle_on_sphere(0.6);
+    EXPECT_GT(red_pixels(render(scene, o)), 200);
+  }
+}
+
+TEST(RenderCli, PlyCurvesTurntablesAndStyles) {
+  const auto dir = output_dir();
+  const auto mesh = dir / "sphere.obj", curve = dir / "curve.ply", png = dir / "out.png";
+  ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "400", "-o", mesh.string()}).exit_code, 0);
+  ASSERT_EQ(run_cli({"curve", mesh.string(), "-o", curve.string()}).exit_code, 0);
+  const auto styled = run_cli({"render", curve.string(), "--occluder", mesh.string(), "--occluder-style", "faint",
+                               "--curve-style", "ribbon", "--fit", "-o", png.string(), "--size", "80x60"});
+  ASSERT_EQ(styled.exit_code, 0) << styled.err;
+  EXPECT_EQ(png_size(test::read_file(png)), std::make_pair(80u, 60u));
+
+  const auto spin = run_cli({"render", curve.string(), "--occluder", mesh.string(), "-o", (dir / "spin.png").string(),
+                             "--size", "48x36", "--turntable", "3", "--view", "front", "--samples", "1"});
+  ASSERT_EQ(spin.exit_code, 0) << spin.err;
+  for (const char* frame : {"spin_000.png", "spin_001.png", "spin_002.png"}) EXPECT_TRUE(fs::exists(dir / frame));
+  EXPECT_FALSE(fs::exists(dir / "spin.png"));
+  // The first frame is the still picture from that view, framed on the bounding sphere.
+  Scene scene;
+  scene.meshes.push_back({.mesh = read_mesh(mesh), .style = MeshStyle::hidden});
+  scene.curves.push_back({.curves = read_polylines(curve)});
+  write_png(render(scene, {.width = 48, .height = 36, .view = parse_view("front"), .samples = 1, .framing = Framing::sphere}),
+            dir / "still.png");
+  EXPECT_EQ(test::read_file(dir / "spin_000.png"), test::read_file(dir / "still.png"));
+
+  const auto frames = run_cli({"curve", mesh.string(), "-o", (dir / "c.obj").string(), "--png", (dir / "f.png").string(),
+                               "--turntable", "2", "--size", "40x30", "--occluder-style", "faint"});
+  ASSERT_EQ(frames.exit_code, 0) << frames.err;
+  EXPECT_TRUE(fs::exists(dir / "f_000.png"));
+  EXPECT_TRUE(fs::exists(dir / "f_001.png"));
+
+  // Usage errors: a tight fit cannot keep a turntable's distance, styles are checked,
+  // picture options need --png.
+  EXPECT_EQ(run_cli({"render", mesh.string(), "-o", png.string(), "--fit", "--turntable", "2"}).exit_code, 2);
+  EXPECT_EQ(run_cli({"render", mesh.string(), "-o", png.string(), "--curve-style", "wire"}).exit_code, 2);
+  EXPECT_EQ(run_cli({"render", mesh.string(), "-o", png.string(), "--occluder-style", "ghost"}).exit_code, 2);
+  EXPECT_EQ(run_cli({"curve", mesh.string(), "-o", (dir / "d.obj").string(), "--turntable", "2"}).exit_code, 2);
+
+  // A malformed PLY curve is refused by the curve reader, naming the edge; no picture.
+  const auto branch = test::write_file("branch.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                                                     "property float y\nproperty float z\nelement edge 3\n"
+                                                     "property int vertex1\nproperty int vertex2\nend_header\n"
+                                                     "0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 1\n0 2\n0 3\n");
+  const auto refused = run_cli({"render", branch.string(), "-o", (dir / "branch.png").string()});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find(branch.string() + ": edge 2: vertex 0 already joins edges 0 and 1"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "branch.png"));
 }
 
 } // namespace

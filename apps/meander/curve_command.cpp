@@ -1,5 +1,6 @@
 #include "cli_support.h"
 #include "commands.h"
+#include "picture_options.h"
 
 #include "meander/io.h"
 #include "meander/pipeline.h"
@@ -13,7 +14,8 @@ namespace {
 
 struct CurveArgs {
   std::string input, output, triangles, png;
-  std::string quad = "dual-simplest", tree = "random", smooth = "bspline", view = "iso", size = "1600x1200";
+  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
+  PictureArgs picture;
   uint64_t seed = 1;
   int samples = 4;
   bool strict = false, verbose = false;
@@ -26,8 +28,7 @@ void run_curve(const CurveArgs& a) {
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
-  RenderOptions picture{.view = parse_view(a.view)};
-  parse_size(a.size, picture.width, picture.height);
+  const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log);
@@ -42,13 +43,16 @@ void run_curve(const CurveArgs& a) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
     log.lap("write cycle");
   }
+  std::string picture_written;
   if (!a.png.empty()) {
     Scene scene;
-    // The surface drawn is the triangulated quad mesh the curve was built on: on
-    // non-planar polygons a fan of the input faces would cut through the curve.
-    scene.meshes.push_back({.mesh = cycle_triangles(result.quads, result.cycle), .color = {0.82f, 0.82f, 0.82f}});
+    // The surface is the occluder, as in the paper's figures: the triangulated quad mesh
+    // the curve was built on, since on non-planar polygons a fan of the input faces
+    // would cut through the curve.
+    scene.meshes.push_back({.mesh = cycle_triangles(result.quads, result.cycle), .color = {0.82f, 0.82f, 0.82f},
+                            .style = a.picture.occluder_style});
     scene.curves.push_back({.curves = result.curves});
-    write_png(render(scene, picture), a.png);
+    picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");
   }
   log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
@@ -56,7 +60,7 @@ void run_curve(const CurveArgs& a) {
   if (!a.triangles.empty())
     log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.num_triangles()) +
              " triangles in cycle order");
-  if (!a.png.empty()) log.note("wrote " + a.png + ": " + std::to_string(picture.width) + "x" + std::to_string(picture.height) + " picture");
+  if (!a.png.empty()) log.note("wrote " + picture_written);
 }
 
 } // namespace
@@ -72,9 +76,9 @@ Command add_curve_command(CLI::App& parent) {
   app->add_option("--smooth", args->smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
   app->add_option("--samples", args->samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
-  app->add_option("--png", args->png, "also render the curve on its surface to this picture (.png)");
-  app->add_option("--view", args->view, "view of the --png picture: front, back, left, right, top, iso or AZ,EL in degrees")->capture_default_str();
-  app->add_option("--size", args->size, "size of the --png picture, WIDTHxHEIGHT")->capture_default_str();
+  CLI::Option* png = app->add_option(
+      "--png", args->png, "also render the curve to this picture (.png), the surface hiding its back parts");
+  add_picture_options(*app, args->picture, "the --png picture", png);
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
   return {app, [args] { run_curve(*args); }};

@@ -87,11 +87,19 @@ Texture read_texture(const std::filesystem::path& path);
 // rename fails the files already renamed are removed. Other extensions: UsageError.
 void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path);
 
-// Reads closed polylines from the `l` elements of an OBJ file (v/vt indices, negative
-// and forward indices as for faces). Each `l` is one closed loop: a last index equal to
-// the first closes it and is not kept as a point. Faces and other statements are
-// skipped. Refuses lines of fewer than 2 vertices and a file without `l` ("no
-// polylines"); other extensions are a UsageError (PLY edges are not read yet).
+// Reads polylines (closed loops and open polylines, see Polylines), format by extension:
+//  .obj  `l` elements (v/vt indices, negative and forward indices as for faces); an `l`
+//        whose last index equals its first is a closed loop (that point is not kept
+//        twice), any other is open. Faces and other statements are skipped.
+//  .ply  ascii or binary: vertex x,y,z and edge vertex1,vertex2 (any scalar types, as
+//        write_polylines writes them), the edges chained into closed loops and open
+//        chains, each starting at its first edge in the file, in that edge's direction;
+//        vertices no edge uses are left out, faces and other elements skipped.
+// What write_polylines writes reads back point for point. Refuses an `l` of fewer than
+// 2 vertices, a file without `l` elements or edges ("no polylines"), an edge from a
+// vertex to itself and a vertex where a third edge arrives ("mesh.ply: edge 7: vertex 4
+// already joins edges 2 and 5 (a polyline does not branch)"); other extensions are a
+// UsageError.
 Polylines read_polylines(const std::filesystem::path& path);
 
 struct MeshWriteOptions {
@@ -119,14 +127,16 @@ struct MeshWriteOptions {
 // file is left.
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 
-// Writes closed polylines, format by extension:
-//  .obj  v lines and one closed `l` element per polyline (the first index repeated at the end)
-//  .ply  binary: vertex float x,y,z and edge int vertex1,vertex2 (closing edges included)
+// Writes polylines, format by extension:
+//  .obj  v lines and one `l` element per polyline (a closed one repeats its first index
+//        at the end)
+//  .ply  binary: vertex float x,y,z and edge int vertex1,vertex2 (closed polylines with
+//        their closing edge)
 //  .json {"polylines": [{"closed": true, "points": [[x,y,z], ...]}, ...]}
 //  .svg  orthographic projection onto the x-y plane (looking down -z), fitted to a page
-//        of 1000 units on its longer side
+//        of 1000 units on its longer side (closed paths end with Z)
 // Points must be finite; an empty polyline gets no `l` element, edge or SVG path, and a
-// one-point polyline no edge. Atomic: no partial file is left.
+// one-point polyline no edge (and no `l` if open). Atomic: no partial file is left.
 // Throws UsageError for any other extension.
 void write_polylines(const Polylines& curves, const std::filesystem::path& path);
 

@@ -61,13 +61,17 @@ struct PolygonMesh {
   void add_face(std::initializer_list<int32_t> vertices) { add_face(std::span(vertices.begin(), vertices.size())); }
 };
 
-// Closed polylines (the curves): polyline k has the points
-// points[start[k] .. start[k+1]) and closes back to its first point.
+// Polylines (the curves): polyline k has the points points[start[k] .. start[k+1]) and
+// closes back to its first point unless open[k] is set. `open` is empty when every
+// polyline is closed, as the curves Meander makes are; readers of files that hold open
+// polylines (PLY edge chains, OBJ `l` elements that do not come back) give one flag each.
 struct Polylines {
   std::vector<Vec3> points;
   std::vector<int32_t> start{0};
+  std::vector<uint8_t> open;
 
   int32_t size() const { return int32_t(start.size()) - 1; }
+  bool closed(int32_t k) const { return open.empty() || open[k] == 0; }
   std::span<const Vec3> polyline(int32_t k) const {
     return {points.data() + start[k], size_t(start[k + 1] - start[k])};
   }

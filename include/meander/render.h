@@ -1,6 +1,7 @@
 // Headless pictures of meshes and curves: ray tracing on the CPU with Embree, written
-// as PNG. Meshes are drawn smooth-shaded (vertex normals, area-weighted), curves as
-// round tubes; a key light plus ambient occlusion; several jittered samples per pixel.
+// as PNG. Meshes are drawn smooth-shaded (vertex normals, area-weighted) or serve as
+// occluders (hidden, or drawn faintly), curves as round tubes or flat ribbons of constant
+// screen width; a key light plus ambient occlusion; several jittered samples per pixel.
 // Rendering is deterministic: the same scene and options give the same bytes, whatever
 // the number of threads. Tiles are rendered in parallel (oneTBB).
 #pragma once
@@ -19,16 +20,23 @@ struct Rgb {
   float r = 0, g = 0, b = 0;
 };
 
+// How a mesh shows. The two occluder styles draw curves the way the paper's figures do:
+// the parts behind the surface are not drawn ("back-face parts are not drawn for
+// cleaner images"), and neither is the surface's own shading or shadow on the curves.
+enum class MeshStyle {
+  shaded, // smooth-shaded in its colour, with ambient occlusion
+  hidden, // an occluder that is not drawn: its pixels show the background
+  faint,  // an occluder drawn as a very light translucent grey that shows the shape
+};
+
 struct SceneMesh {
   PolygonMesh mesh; // polygons are fanned from their first vertex
   Rgb color{0.8f, 0.8f, 0.8f};
-  // Occluder only: hides what is behind it but is not drawn (its pixels show the
-  // background), as the paper draws curves with their back parts hidden.
-  bool occluder_only = false;
+  MeshStyle style = MeshStyle::shaded;
 };
 
 struct SceneCurves {
-  Polylines curves; // each polyline is a closed loop
+  Polylines curves; // closed loops and open polylines
   Rgb color{0.75f, 0.12f, 0.08f};
 };
 
@@ -48,14 +56,41 @@ struct Background {
   bool transparent = false; // transparent: an RGBA image whose alpha is the coverage
 };
 
+// Either way, curves are drawn over the surfaces they lie on: a surface hides a curve
+// only where it is more than a few curve widths in front of it (two for tubes, four for
+// ribbons), so the parts of a curve sunk into its surface still show and those on the
+// far side of a solid do not.
+enum class CurveStyle {
+  tube,   // round tubes of one diameter in the scene: nearer parts look thicker
+  ribbon, // flat ribbons facing the camera, flat-shaded, as wide in pixels at any depth
+};
+
+// Where the camera stands, always looking along `view`.
+enum class Framing {
+  // Looks at the centre of the points' extent across the view, from far enough that
+  // every point is inside the picture with a 6% margin on each side.
+  bounds,
+  // Frames the projected points tightly: the eye is placed where the picture's four edge
+  // planes, moved 3% inwards, touch the points (the nearer pair of edges touches, the
+  // other pair is centred), so the object fills the picture.
+  silhouette,
+  // Looks at the centre of the bounding box from far enough that its bounding sphere is
+  // inside the picture with a 6% margin, whatever the view: the same distance from
+  // every direction (turntables).
+  sphere,
+};
+
 struct RenderOptions {
   int32_t width = 1600, height = 1200; // pixels, each 1..16384
   View view;
   Background background;
   int32_t samples = 4; // rays per pixel, 1..1024
-  // Tube diameter in pixels at the scene's centre; 0: from the curve spacing on the
-  // meshes (a quarter of the mean distance between neighbouring passes), at least 1.5 px.
+  // Curve diameter in pixels: for tubes at the scene's centre, for ribbons everywhere.
+  // 0: from the curve spacing on the meshes (a quarter of the mean distance between
+  // neighbouring passes), at least 1.5 px.
   double curve_width = 0;
+  CurveStyle curve_style = CurveStyle::tube;
+  Framing framing = Framing::bounds;
 };
 
 // An 8-bit image, rows top to bottom; rgba holds 4 bytes per pixel.
@@ -75,15 +110,29 @@ Background parse_background(std::string_view text);
 // "1600x1200" into width and height, each 1..16384. Throws UsageError naming the text.
 void parse_size(std::string_view text, int32_t& width, int32_t& height);
 
-// Renders the scene with a perspective camera looking at the centre of the scene's
-// bounds from `view`, fitted so that every point is inside the picture with a margin.
-// Throws UsageError for a size or sample count out of range. Time: building the BVH is
-// about linear in the triangles and curve segments; then width * height * samples rays
-// and a few ambient-occlusion rays each.
+// Renders the scene with a perspective camera (25 degrees vertical field of view) looking
+// from `view`, placed as `framing` says. Throws UsageError for a size or sample count out
+// of range. Time: building the BVH is about linear in the triangles and curve segments;
+// then width * height * samples rays and a few ambient-occlusion rays each.
 Image render(const Scene& scene, const RenderOptions& options);
 
 // Writes the image as PNG (RGB, or RGBA if it has alpha). Atomic: no partial file is
 // left. Throws UsageError if the extension is not .png, IOError if it cannot be written.
 void write_png(const Image& image, const std::filesystem::path& path);
+
+// The file of frame `frame` (0-based) of a turntable of `frames`: "spin.png" becomes
+// "spin_007.png", the number zero-padded to at least 3 digits (4 from 1001 frames on).
+std::filesystem::path turntable_frame_path(const std::filesystem::path& path, int32_t frame, int32_t frames);
+
+// Renders `frames` pictures turning around the vertical axis through the centre of the
+// scene's bounds: frame k looks from azimuth view.azimuth + 360 * k / frames at the
+// view's elevation, framed on the bounding sphere (options.framing is not used), so the
+// camera keeps its distance and nothing leaves the picture. Frame 0 is render() with
+// Framing::sphere. Writes each frame with write_png to turntable_frame_path(path, k,
+// frames) and returns the paths. Throws UsageError for frames outside 1..100000 or a
+// path that is not .png, before any work; frames already written stay if a later one
+// fails. Time: `frames` renders.
+std::vector<std::filesystem::path> write_turntable(const Scene& scene, const RenderOptions& options, int32_t frames,
+                                                   const std::filesystem::path& path);
 
 } // namespace meander

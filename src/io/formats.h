@@ -20,6 +20,13 @@ PolygonMesh read_ply(std::string_view bytes, std::string_view name);
 PolygonMesh read_stl(std::string_view bytes, std::string_view name);
 PolygonMesh read_off(std::string_view bytes, std::string_view name);
 Polylines read_obj_polylines(std::string_view bytes, std::string_view name);
+Polylines read_ply_polylines(std::string_view bytes, std::string_view name);
+
+// Chains edges (2 vertex ids each, in range) into polylines: closed loops and open
+// chains, each starting at its first edge in file order, in that edge's direction.
+// Vertices no edge uses are left out. Refuses an edge from a vertex to itself, a
+// vertex where a third edge arrives (naming that edge) and no edges at all.
+Polylines chain_edges(std::span<const Vec3> positions, std::span<const int32_t> edges, std::string_view name);
 
 void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);

@@ -97,11 +97,13 @@ PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_vie
 }
 
 Polylines read_polylines(const std::filesystem::path& path) {
-  if (const std::string extension = io::lowercase_extension(path); extension != ".obj")
-    throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj)");
+  const std::string extension = io::lowercase_extension(path);
+  if (extension != ".obj" && extension != ".ply")
+    throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj or .ply)");
   const MappedFile file(path);
   if (file.bytes().empty()) io::fail_input(path.string(), "file is empty");
-  return io::read_obj_polylines(file.bytes(), path.string());
+  return extension == ".obj" ? io::read_obj_polylines(file.bytes(), path.string())
+                             : io::read_ply_polylines(file.bytes(), path.string());
 }
 
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options) {

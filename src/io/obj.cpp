@@ -2,6 +2,8 @@
 #include "io/reader_support.h"
 #include "io/text_cursor.h"
 
+#include <algorithm>
+
 namespace meander::io {
 namespace {
 
@@ -73,6 +75,7 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
   TextCursor in(bytes, name);
   std::vector<Vec3> positions;
   std::vector<int32_t> start{0}, indices;
+  std::vector<uint8_t> open;
   ForwardIndices forward;
   while (!in.at_end()) {
     if (!in.at_line_end()) {
@@ -84,11 +87,13 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
         while (!in.at_line_end()) indices.push_back(forward.read(in, "line", int64_t(positions.size())));
         const size_t size = indices.size() - first;
         if (size < 2) in.fail("line with " + std::to_string(size) + " vertices (at least 2 needed)");
-        // Polylines are closed loops: a repeated first index (as write_polylines
-        // writes them) is the closing edge, not another point.
-        if (size > 2 && indices.back() == indices[first]) indices.pop_back();
+        // A repeated first index (as write_polylines writes closed loops) is the
+        // closing edge, not another point; a line that does not come back is open.
+        const bool closed = size > 2 && indices.back() == indices[first];
+        if (closed) indices.pop_back();
         if (indices.size() > size_t(max_count)) in.fail(too_many(indices.size(), "line points"));
         start.push_back(int32_t(indices.size()));
+        open.push_back(!closed);
       }
     }
     in.next_line();
@@ -97,6 +102,7 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
   if (start.size() == 1) fail_input(name, "no polylines (l elements)");
   Polylines curves;
   curves.start = std::move(start);
+  if (std::find(open.begin(), open.end(), 1) != open.end()) curves.open = std::move(open);
   curves.points.reserve(indices.size());
   for (int32_t i : indices) curves.points.push_back(positions[i]);
   return curves;

@@ -54,8 +54,9 @@ template <class F> auto with_scalar_type(Scalar type, F f) {
   return f(double{});
 }
 
-// What Meander takes from a property; x, y, z double as indices into a point.
-enum class Role : uint8_t { x, y, z, indices, none };
+// What Meander takes from a property; x, y, z double as indices into a point, and
+// vertex1, vertex2 as indices into an edge.
+enum class Role : uint8_t { x, y, z, indices, vertex1, vertex2, none };
 
 struct Property {
   std::string name;
@@ -64,7 +65,7 @@ struct Property {
   Role role = Role::none;
 };
 
-enum class Kind : uint8_t { vertex, face, other };
+enum class Kind : uint8_t { vertex, face, edge, other };
 
 struct Element {
   std::string name;
@@ -100,17 +101,23 @@ std::string record_label(const Element& e, uint64_t index) { return e.name + " "
 
 std::string ends_early(const Element& e) { return "file ends early (the header claims " + e.claimed() + ")"; }
 
-// Finds the vertex and face elements and the properties Meander reads from them.
-void assign_roles(Header& header, std::string_view name) {
+// What a file is read for: a mesh (vertex and face elements) or polylines (vertex and
+// edge elements); the other elements are skipped.
+enum class Target { mesh, polylines };
+
+// Finds the vertex element and the face or edge element, and the properties Meander
+// reads from them.
+void assign_roles(Header& header, Target target, std::string_view name) {
   const auto fail = [&](const std::string& message) { fail_input(name, "header: " + message); };
+  const std::string_view wanted = target == Target::mesh ? "face" : "edge";
   Element* vertex = nullptr;
   Element* face = nullptr;
   for (Element& e : header.elements) {
-    Element** slot = e.name == "vertex" ? &vertex : e.name == "face" ? &face : nullptr;
+    Element** slot = e.name == "vertex" ? &vertex : e.name == wanted ? &face : nullptr;
     if (!slot) continue;
     if (*slot) fail("two " + e.name + " elements");
     *slot = &e;
-    e.kind = slot == &vertex ? Kind::vertex : Kind::face;
+    e.kind = slot == &vertex ? Kind::vertex : target == Target::mesh ? Kind::face : Kind::edge;
   }
   if (!vertex) fail("no vertex element");
   for (Role axis : {Role::x, Role::y, Role::z}) {
@@ -122,6 +129,19 @@ void assign_roles(Header& header, std::string_view name) {
     p->role = axis;
   }
   if (std::string message = too_many(vertex->count, "vertices"); !message.empty()) fail(message);
+  if (target == Target::polylines) {
+    if (!face) fail_input(name, "no polylines (edge elements)");
+    for (Role end : {Role::vertex1, Role::vertex2}) {
+      const std::string end_name = end == Role::vertex1 ? "vertex1" : "vertex2";
+      const auto p = std::find_if(face->properties.begin(), face->properties.end(),
+                                  [&](const Property& q) { return q.name == end_name; });
+      if (p == face->properties.end()) fail("element edge has no property " + end_name);
+      if (p->count_type || !is_integer(p->type)) fail("property " + end_name + " of element edge must be an integer");
+      p->role = end;
+    }
+    if (std::string message = too_many(face->count, "edges"); !message.empty()) fail(message);
+    return;
+  }
   if (!face) fail_input(name, "no faces");
   const auto indices = std::find_if(face->properties.begin(), face->properties.end(), [](const Property& q) {
     return q.name == "vertex_indices" || q.name == "vertex_index";
@@ -132,7 +152,7 @@ void assign_roles(Header& header, std::string_view name) {
   if (std::string message = too_many(face->count, "faces"); !message.empty()) fail(message);
 }
 
-Header read_header(std::string_view bytes, std::string_view name) {
+Header read_header(std::string_view bytes, Target target, std::string_view name) {
   const auto fail = [&](const std::string& message) { fail_input(name, "header: " + message); };
   Header header;
   bool has_format = false;
@@ -207,7 +227,7 @@ Header read_header(std::string_view bytes, std::string_view name) {
     }
   }
   if (!has_format) fail("no format line");
-  assign_roles(header, name);
+  assign_roles(header, target, name);
   return header;
 }
 
@@ -249,6 +269,7 @@ public:
     switch (e.kind) {
     case Kind::vertex: return !swap_ && read_float_vertices(e, mesh.positions);
     case Kind::face: return !swap_ && read_byte_counted_faces(e, index_limit, mesh);
+    case Kind::edge: return false;
     case Kind::other: return skip_fixed_size(e);
     }
     return false;
@@ -417,9 +438,10 @@ template <class Source> size_t records_that_fit(const Source& in, const Element&
   return size_t(std::min<uint64_t>(e.count, in.bytes_left() / least));
 }
 
-// Reads (vertex, face) or skips (others) an element value by value: any layout, any
-// types, either body encoding.
-template <class Source> void read_element(Source& in, const Element& e, int64_t index_limit, PolygonMesh& mesh) {
+// Reads (vertex, face, edge) or skips (others) an element value by value: any layout,
+// any types, either body encoding. Edges go to `edges`, 2 vertex ids each.
+template <class Source>
+void read_element(Source& in, const Element& e, int64_t index_limit, PolygonMesh& mesh, std::vector<int32_t>& edges) {
   // Records without properties take no bytes: nothing to read, however many.
   if (e.properties.empty()) return;
   if (e.kind == Kind::vertex) mesh.positions.reserve(records_that_fit(in, e));
@@ -427,11 +449,17 @@ template <class Source> void read_element(Source& in, const Element& e, int64_t 
     mesh.face_start.reserve(records_that_fit(in, e) + 1);
     mesh.face_vertices.reserve(3 * records_that_fit(in, e));
   }
+  if (e.kind == Kind::edge) edges.reserve(2 * records_that_fit(in, e));
   for (uint64_t i = 0; i < e.count; ++i) {
     in.begin(e, i);
     float point[3] = {};
+    int32_t ends[2] = {};
     for (const Property& p : e.properties) {
-      if (p.role == Role::indices) {
+      if (p.role == Role::vertex1 || p.role == Role::vertex2) {
+        const int64_t index = in.integer(p.type, "vertex index");
+        if (index < 0 || index >= index_limit) in.fail(index_out_of_range(index, index_limit));
+        ends[p.role == Role::vertex2] = int32_t(index);
+      } else if (p.role == Role::indices) {
         const int64_t size = in.integer(*p.count_type, "list length");
         if (size < 3) in.fail(too_few_vertices(size));
         for (int64_t k = 0; k < size; ++k) {
@@ -451,18 +479,20 @@ template <class Source> void read_element(Source& in, const Element& e, int64_t 
     }
     if (e.kind == Kind::vertex) mesh.positions.push_back({point[0], point[1], point[2]});
     if (e.kind == Kind::face) mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
+    if (e.kind == Kind::edge) edges.insert(edges.end(), {ends[0], ends[1]});
   }
 }
 
-template <class Source> void read_body(Source& in, const Header& header, std::string_view name, PolygonMesh& mesh) {
+template <class Source>
+void read_body(Source& in, const Header& header, std::string_view name, PolygonMesh& mesh, std::vector<int32_t>& edges) {
   bool vertices_read = false, faces_first = false;
   for (const Element& e : header.elements) {
-    // Faces before vertices are checked against the count once it is known.
+    // Faces and edges before vertices are checked against the count once it is known.
     const int64_t index_limit = vertices_read ? mesh.num_vertices() : max_count;
-    faces_first |= e.kind == Kind::face && !vertices_read;
+    faces_first |= (e.kind == Kind::face || e.kind == Kind::edge) && !vertices_read;
     bool done = false;
     if constexpr (std::is_same_v<Source, BinarySource>) done = in.read_fast(e, index_limit, mesh);
-    if (!done) read_element(in, e, index_limit, mesh);
+    if (!done) read_element(in, e, index_limit, mesh, edges);
     vertices_read |= e.kind == Kind::vertex;
   }
   if (!faces_first) return;
@@ -470,27 +500,45 @@ template <class Source> void read_body(Source& in, const Header& header, std::st
     for (int32_t v : mesh.face(f))
       if (v >= mesh.num_vertices())
         fail_input(name, "face " + std::to_string(f) + ": " + index_out_of_range(v, mesh.num_vertices()));
+  for (size_t c = 0; c < edges.size(); ++c)
+    if (edges[c] >= mesh.num_vertices())
+      fail_input(name, "edge " + std::to_string(c / 2) + ": " + index_out_of_range(edges[c], mesh.num_vertices()));
 }
 
-} // namespace
-
-PolygonMesh read_ply(std::string_view bytes, std::string_view name) {
-  const Header header = read_header(bytes, name);
+// Reads the body of a PLY file: the mesh's positions and faces, or edges.
+void read_ply_body(std::string_view bytes, const Header& header, std::string_view name, PolygonMesh& mesh,
+                   std::vector<int32_t>& edges) {
   const std::string_view body = bytes.substr(header.body_offset);
-  PolygonMesh mesh;
   if (header.encoding == Encoding::ascii) {
     TextCursor cursor(body, name, header.body_line);
     TextSource in(cursor);
-    read_body(in, header, name, mesh);
+    read_body(in, header, name, mesh, edges);
     cursor.skip_space();
     if (!cursor.at_end()) cursor.fail("unexpected " + quoted(cursor.word()) + " after the last element");
   } else {
     const bool swap = (header.encoding == Encoding::binary_big_endian) == host_is_little_endian;
     BinarySource in(body, swap, name);
-    read_body(in, header, name, mesh);
+    read_body(in, header, name, mesh, edges);
   }
+}
+
+} // namespace
+
+PolygonMesh read_ply(std::string_view bytes, std::string_view name) {
+  const Header header = read_header(bytes, Target::mesh, name);
+  PolygonMesh mesh;
+  std::vector<int32_t> no_edges;
+  read_ply_body(bytes, header, name, mesh, no_edges);
   require_faces(mesh, name);
   return mesh;
+}
+
+Polylines read_ply_polylines(std::string_view bytes, std::string_view name) {
+  const Header header = read_header(bytes, Target::polylines, name);
+  PolygonMesh vertices;
+  std::vector<int32_t> edges;
+  read_ply_body(bytes, header, name, vertices, edges);
+  return chain_edges(vertices.positions, edges, name);
 }
 
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {

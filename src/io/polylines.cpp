@@ -1,7 +1,9 @@
 #include "io/formats.h"
+#include "io/reader_support.h"
 #include "meander/error.h"
 
 #include <algorithm>
+#include <string>
 
 namespace meander {
 namespace {
@@ -13,23 +15,27 @@ void write_obj_polylines(const Polylines& curves, io::AtomicFile& out) {
   }
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[k], end = curves.start[k + 1];
-    if (first == end) continue; // an empty polyline has no element to write
+    // An empty polyline has no element to write, and an open one of one point no line.
+    if (first == end || (!curves.closed(k) && end - first < 2)) continue;
     out.put('l');
     for (int32_t i = first; i < end; ++i) {
       out.put(' ');
       out.integer(int64_t(i) + 1);
     }
-    out.put(' ');
-    out.integer(int64_t(first) + 1);
+    // The first index repeated is what tells a reader that the line closes.
+    if (curves.closed(k)) {
+      out.put(' ');
+      out.integer(int64_t(first) + 1);
+    }
     out.put('\n');
   }
 }
 
 void write_ply_polylines(const Polylines& curves, io::AtomicFile& out) {
-  // A closed polyline of n >= 2 points has n edges; a single point has none.
+  // A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point has none.
   int64_t edges = 0;
   for (int32_t k = 0; k < curves.size(); ++k)
-    if (const int32_t n = curves.start[k + 1] - curves.start[k]; n >= 2) edges += n;
+    if (const int32_t n = curves.start[k + 1] - curves.start[k]; n >= 2) edges += curves.closed(k) ? n : n - 1;
   out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
   out.integer(int64_t(curves.points.size()));
   out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
@@ -39,7 +45,7 @@ void write_ply_polylines(const Polylines& curves, io::AtomicFile& out) {
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[k], end = curves.start[k + 1];
     if (end - first < 2) continue;
-    for (int32_t i = first; i < end; ++i) {
+    for (int32_t i = first; i < (curves.closed(k) ? end : end - 1); ++i) {
       out.little_endian(i);
       out.little_endian(i + 1 == end ? first : i + 1);
     }
@@ -50,7 +56,7 @@ void write_json_polylines(const Polylines& curves, io::AtomicFile& out) {
   out.text("{\"polylines\": [");
   for (int32_t k = 0; k < curves.size(); ++k) {
     out.text(k == 0 ? "\n  " : ",\n  ");
-    out.text("{\"closed\": true, \"points\": [");
+    out.text(curves.closed(k) ? "{\"closed\": true, \"points\": [" : "{\"closed\": false, \"points\": [");
     const std::span<const Vec3> points = curves.polyline(k);
     for (size_t i = 0; i < points.size(); ++i) {
       out.text(i == 0 ? "[" : ", [");
@@ -97,12 +103,72 @@ void write_svg_polylines(const Polylines& curves, io::AtomicFile& out) {
       out.put(' ');
       out.fixed(margin + (double(box.max.y) - points[i].y) * scale, decimals);
     }
-    out.text(" Z\"/>\n");
+    out.text(curves.closed(k) ? " Z\"/>\n" : "\"/>\n");
   }
   out.text("</g>\n</svg>\n");
 }
 
 } // namespace
+
+Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32_t> edges, std::string_view name) {
+  const int32_t num_edges = int32_t(edges.size() / 2);
+  // The two edges a polyline vertex may have (-1: none); a third would be a branch.
+  std::vector<int32_t> incident(2 * positions.size(), -1);
+  for (int32_t e = 0; e < num_edges; ++e) {
+    const int32_t a = edges[2 * size_t(e)], b = edges[2 * size_t(e) + 1];
+    if (a == b) fail_input(name, "edge " + std::to_string(e) + ": joins vertex " + std::to_string(a) + " to itself");
+    for (const int32_t v : {a, b}) {
+      int32_t* slot = &incident[2 * size_t(v)];
+      if (slot[0] < 0)
+        slot[0] = e;
+      else if (slot[1] < 0)
+        slot[1] = e;
+      else
+        fail_input(name, "edge " + std::to_string(e) + ": vertex " + std::to_string(v) + " already joins edges " +
+                             std::to_string(slot[0]) + " and " + std::to_string(slot[1]) +
+                             " (a polyline does not branch)");
+    }
+  }
+  const auto other_edge = [&](int32_t v, int32_t e) { return incident[2 * size_t(v)] == e ? incident[2 * size_t(v) + 1] : incident[2 * size_t(v)]; };
+  const auto other_end = [&](int32_t e, int32_t v) { return edges[2 * size_t(e)] == v ? edges[2 * size_t(e) + 1] : edges[2 * size_t(e)]; };
+
+  Polylines out;
+  std::vector<uint8_t> used(size_t(num_edges), 0);
+  bool any_open = false;
+  for (int32_t first = 0; first < num_edges; ++first) {
+    if (used[size_t(first)]) continue;
+    // Each chain starts at its first edge in the file, in that edge's direction, so that
+    // what write_polylines wrote reads back point for point; an open chain is first
+    // walked back to its end.
+    int32_t start = edges[2 * size_t(first)], e = first;
+    bool closed = false;
+    for (int32_t back = other_edge(start, e); back >= 0; back = other_edge(start, e)) {
+      if (back == first) {
+        closed = true;
+        start = edges[2 * size_t(first)], e = first;
+        break;
+      }
+      start = other_end(back, start), e = back;
+    }
+    for (int32_t v = start;;) {
+      out.points.push_back(positions[size_t(v)]);
+      used[size_t(e)] = 1;
+      v = other_end(e, v);
+      if (v == start) break;
+      e = other_edge(v, e);
+      if (e < 0) {
+        out.points.push_back(positions[size_t(v)]);
+        break;
+      }
+    }
+    out.start.push_back(int32_t(out.points.size()));
+    out.open.push_back(!closed);
+    any_open |= !closed;
+  }
+  if (out.size() == 0) fail_input(name, "no polylines (no edges)");
+  if (!any_open) out.open.clear();
+  return out;
+}
 
 void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
   const std::string extension = io::lowercase_extension(path);
