@@ -456,13 +456,12 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     }
   }
 
-  double thickness = options.thickness;
-  if (!ribbon && thickness == 0) {
-    std::vector<double> widths(left.size());
-    for (size_t r = 0; r < left.size(); ++r) widths[r] = norm(right[r] - left[r]);
-    std::nth_element(widths.begin(), widths.begin() + ptrdiff_t(widths.size() / 2), widths.end());
-    thickness = widths.empty() ? 0.0 : widths[widths.size() / 2] / 2;
-  }
+  // The automatic thickness follows the ribbon's local width, as the width follows the
+  // triangles: one global figure makes tall walls of the narrow parts, whose tops meet
+  // in hollows and fold over in tight turns.
+  auto half_thickness = [&](size_t rung) {
+    return float((options.thickness > 0 ? options.thickness : 0.5 * norm(right[rung] - left[rung])) / 2);
+  };
 
   // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,
   // right above, right below), which makes the faces point out of the slab.
@@ -473,7 +472,7 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     if (ribbon) {
       control.positions.insert(control.positions.end(), {left[r], right[r]});
     } else {
-      const Vec3 hl = left_normal[r] * float(thickness / 2), hr = right_normal[r] * float(thickness / 2);
+      const Vec3 hl = left_normal[r] * half_thickness(r), hr = right_normal[r] * half_thickness(r);
       control.positions.insert(control.positions.end(), {left[r] - hl, left[r] + hl, right[r] + hr, right[r] - hr});
     }
   }

@@ -41,7 +41,7 @@ void run_wire(const WireArgs& a) {
   const WireShape shape = parse_wire_shape(a.shape);
   double radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
-  require_output_path(a.output, {".stl", ".ply", ".obj", ".off"}, "-o");
+  require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
   RenderOptions picture{.view = parse_view(a.view)};
@@ -89,7 +89,7 @@ Command add_wire_command(CLI::App& parent) {
   auto args = std::make_shared<WireArgs>();
   CLI::App* app = parent.add_subcommand("wire", "Make a wire or ribbon sculpture from the surface-covering curve (3D-printable)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
-  app->add_option("-o,--output", args->output, "output mesh: .stl, .ply (binary), .obj, .off")->required();
+  app->add_option("-o,--output", args->output, "output mesh: .stl, .ply (binary), .obj, .off, .glb, .3mf")->required();
   app->add_option("--method", args->method, "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
                                             "inside the cycle's triangles, smoothed by Catmull-Clark")
       ->check(CLI::IsMember({"constant", "variable"}))->capture_default_str();
