@@ -100,7 +100,7 @@ Command add_wire_command(CLI::App& parent) {
   app->add_option("--sides", args->sides, "constant wire: sides of the swept polygon")->check(CLI::Range(3, 64))->capture_default_str();
   app->add_option("--s", args->s, "variable: trapezoid size across the curve, 0..1 (1 covers the surface)")->check(CLI::Range(0.0, 1.0))->capture_default_str();
   app->add_option("--t", args->t, "variable: trapezoid size along the curve, 0..1")->check(CLI::Range(0.0, 1.0))->capture_default_str();
-  app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the median ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the local ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--report", args->report, "also write the printability report (.json)");
   app->add_option("--png", args->png, "also render the wire to this picture (.png)");

@@ -73,7 +73,7 @@ struct VariableWireOptions {
   WireShape shape = WireShape::wire;
   double s = 0.6, t = 0.6;
   // Wire only: the slab's thickness perpendicular to the surface, centred on it, in mesh
-  // units; 0 = half the median width of the ribbon.
+  // units; 0 = half the ribbon's local width, so that it too follows the triangles.
   double thickness = 0;
   int levels = 2; // Catmull-Clark levels (OpenSubdiv), >= 0; 0 gives the control mesh
 };
