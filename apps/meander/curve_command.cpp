@@ -50,7 +50,7 @@ void run_curve(const CurveArgs& a) {
     // the curve was built on, since on non-planar polygons a fan of the input faces
     // would cut through the curve.
     scene.meshes.push_back({.mesh = cycle_triangles(result.quads, result.cycle), .color = {0.82f, 0.82f, 0.82f},
-                            .style = a.picture.occluder_style});
+                            .style = occluder_style(a.picture)});
     scene.curves.push_back({.curves = result.curves});
     picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");

@@ -1,13 +1,8 @@
 #include "picture_options.h"
 
-#include <map>
-
 namespace meander::cli {
 
 void add_picture_options(CLI::App& app, PictureArgs& args, const std::string& picture, CLI::Option* needs) {
-  const std::map<std::string, CurveStyle> curve_styles{{"tube", CurveStyle::tube}, {"ribbon", CurveStyle::ribbon}};
-  const std::map<std::string, MeshStyle> occluder_styles{
-      {"hidden", MeshStyle::hidden}, {"faint", MeshStyle::faint}, {"shaded", MeshStyle::shaded}};
   CLI::Option* options[] = {
       app.add_option("--size", args.size, "size of " + picture + " in pixels, WIDTHxHEIGHT")->capture_default_str(),
       app.add_option("--view", args.view, "view of " + picture + ": front, back, left, right, top, iso, or AZ,EL in degrees")
@@ -26,13 +21,13 @@ void add_picture_options(CLI::App& app, PictureArgs& args, const std::string& pi
           ->check(CLI::PositiveNumber),
       app.add_option("--curve-style", args.curve_style,
                      "tube (round, thicker nearer the eye) or ribbon (flat, the same width in pixels at any depth)")
-          ->transform(CLI::CheckedTransformer(curve_styles))
-          ->default_str("tube"),
+          ->check(CLI::IsMember({"tube", "ribbon"}))
+          ->capture_default_str(),
       app.add_option("--occluder-style", args.occluder_style,
                      "how the occluding surface shows: hidden (not drawn, as in the paper's figures), faint (a very "
                      "light grey) or shaded; parts of curves behind it are never drawn")
-          ->transform(CLI::CheckedTransformer(occluder_styles))
-          ->default_str("hidden"),
+          ->check(CLI::IsMember({"hidden", "faint", "shaded"}))
+          ->capture_default_str(),
   };
   // Turntable frames are framed on the bounding sphere, which keeps the distance fixed;
   // a tight frame would change it from frame to frame.
@@ -45,10 +40,16 @@ RenderOptions picture_options(const PictureArgs& args) {
   RenderOptions options{.view = parse_view(args.view),
                         .background = parse_background(args.background),
                         .curve_width = args.curve_width,
-                        .curve_style = args.curve_style,
+                        .curve_style = args.curve_style == "ribbon" ? CurveStyle::ribbon : CurveStyle::tube,
                         .framing = args.fit ? Framing::silhouette : Framing::bounds};
   parse_size(args.size, options.width, options.height);
   return options;
+}
+
+MeshStyle occluder_style(const PictureArgs& args) {
+  return args.occluder_style == "faint"    ? MeshStyle::faint
+         : args.occluder_style == "shaded" ? MeshStyle::shaded
+                                           : MeshStyle::hidden;
 }
 
 std::string write_picture(const Scene& scene, const RenderOptions& options, const PictureArgs& args,

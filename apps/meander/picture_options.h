@@ -13,9 +13,8 @@ namespace meander::cli {
 
 struct PictureArgs {
   std::string size = "1600x1200", view = "iso", background = "white";
+  std::string curve_style = "tube", occluder_style = "hidden";
   double curve_width = 0;
-  CurveStyle curve_style = CurveStyle::tube;
-  MeshStyle occluder_style = MeshStyle::hidden;
   bool fit = false;
   int32_t turntable = 0; // frames; 0: one picture
 };
@@ -28,6 +27,9 @@ void add_picture_options(CLI::App& app, PictureArgs& args, const std::string& pi
 // The render options they give. Throws UsageError for a bad size, view or background,
 // so that commands can check them before any work.
 RenderOptions picture_options(const PictureArgs& args);
+
+// How the occluding surface is drawn (--occluder-style).
+MeshStyle occluder_style(const PictureArgs& args);
 
 // Renders the scene to `path`, or its turntable frames next to it, and says what was
 // written ("out.png: 1600x1200 picture", "36 frames spin_000.png .. spin_035.png").

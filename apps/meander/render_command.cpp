@@ -53,7 +53,7 @@ void run_render(const RenderArgs& a) {
   Scene scene;
   for (const std::string& input : a.inputs) read_input(input, scene);
   for (const std::string& occluder : a.occluders)
-    scene.meshes.push_back({.mesh = read_mesh(occluder), .style = a.picture.occluder_style});
+    scene.meshes.push_back({.mesh = read_mesh(occluder), .style = occluder_style(a.picture)});
   log.lap("read");
   const std::string written = write_picture(scene, options, a.picture, a.output);
   log.lap("render and write png");
