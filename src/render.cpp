@@ -77,7 +77,24 @@ struct GeometryInfo {
   MeshStyle style = MeshStyle::shaded;
   std::vector<uint32_t> triangles; // 3 vertex ids per triangle
   std::vector<Vec3> normals;       // per vertex, unnormalised area-weighted
+  // A mesh with materials: the face of each triangle and its 3 corners (for the texture
+  // coordinates); the appearance lives in the scene, which outlives the rendering.
+  const Appearance* appearance = nullptr;
+  std::vector<int32_t> faces, corners;
 };
+
+// The colour of a mesh with materials at barycentric (u, v) of triangle t, in linear light.
+V3 surface_albedo(const GeometryInfo& g, unsigned t, double u, double v) {
+  const Appearance& a = *g.appearance;
+  const Material& m = a.materials[a.face_material.empty() ? 0 : size_t(a.face_material[size_t(g.faces[t])])];
+  V3 colour{m.base_color[0], m.base_color[1], m.base_color[2]};
+  if (m.texture.empty()) return colour;
+  const int32_t* c = &g.corners[3 * size_t(t)];
+  const TexCoord t0 = a.texcoords[size_t(c[0])], t1 = a.texcoords[size_t(c[1])], t2 = a.texcoords[size_t(c[2])];
+  const TexCoord uv{float(t0.u * (1 - u - v) + t1.u * u + t2.u * v), float(t0.v * (1 - u - v) + t1.v * u + t2.v * v)};
+  const LinearRgb texel = sample_texture(m.texture, uv);
+  return colour * V3{texel[0], texel[1], texel[2]};
+}
 
 struct Camera {
   V3 eye, forward, right, up;
@@ -207,12 +224,19 @@ double curve_length(const Polylines& c) {
 void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
   GeometryInfo g{.albedo = linear(m.color), .style = m.style};
   const PolygonMesh& mesh = m.mesh;
+  check_appearance(mesh, m.appearance, "render: scene mesh");
+  if (!m.appearance.materials.empty() && m.style != MeshStyle::hidden) g.appearance = &m.appearance;
   g.normals.assign(mesh.positions.size(), Vec3{});
   for (int32_t f = 0; f < mesh.num_faces(); ++f) {
     const auto face = mesh.face(f);
     for (size_t i = 1; i + 1 < face.size(); ++i) {
       const uint32_t a = face[0], b = face[i], c = face[i + 1];
       g.triangles.insert(g.triangles.end(), {a, b, c});
+      if (g.appearance) {
+        const int32_t first = mesh.face_start[f];
+        g.faces.push_back(f);
+        g.corners.insert(g.corners.end(), {first, first + int32_t(i), first + int32_t(i) + 1});
+      }
       if (m.style == MeshStyle::hidden) continue;
       // The cross product's length is twice the area: area-weighted for free.
       const Vec3 n = meander::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
@@ -281,6 +305,7 @@ struct Hit {
   bool found = false;
   unsigned geometry = 0;
   V3 position, normal;
+  V3 albedo; // linear colour of the surface there
 };
 
 // How far behind a surface a curve still shows: curves are drawn over the surfaces they
@@ -335,6 +360,7 @@ public:
       n = n * -1;
     }
     h.normal = n;
+    h.albedo = g.appearance ? surface_albedo(g, rh.hit.primID, rh.hit.u, rh.hit.v) : g.albedo;
     return h;
   }
 
@@ -526,7 +552,7 @@ Image render(const Scene& scene, const RenderOptions& o) {
             const double ao = double(open) / ao_rays;
             const double diffuse = std::max(0.0, dot(n, key));
             const double sky = 0.55 + 0.45 * dot(n, camera.up);
-            V3 colour = g.albedo * (0.72 * diffuse + 0.38 * sky * ao);
+            V3 colour = hit.albedo * (0.72 * diffuse + 0.38 * sky * ao);
             if (g.curve) {
               const V3 half = normalized(key - direction);
               const double specular = 0.25 * std::pow(std::max(0.0, dot(n, half)), 40);

@@ -76,6 +76,15 @@ TEST(TexturedObj, WritesObjMtlAndPngThatReadBackTheSame) {
   EXPECT_EQ(read_mesh(dir / "quad.obj").face_vertices, quad.mesh.face_vertices);
 }
 
+TEST(TexturedObj, AFailedFileLeavesNoneOfTheOthers) {
+  // Tricky: the OBJ and the MTL are written and renamed first; the texture's rename then
+  // fails (a folder holds its name), and the two already in place must go again.
+  const fs::path dir = output_dir();
+  fs::create_directory(dir / "quad_texture.png");
+  EXPECT_THROW(write_textured_mesh(checker_quad(), dir / "quad.obj"), IOError);
+  EXPECT_EQ(std::vector<fs::path>(fs::directory_iterator(dir), {}), std::vector<fs::path>{dir / "quad_texture.png"});
+}
+
 TEST(TexturedObj, KeepsOneMaterialPerFace) {
   // Tricky: the faces switch material, and one material name holds a space, which an
   // MTL cannot carry: it is written under a usable name and read back the same.
@@ -195,6 +204,9 @@ TEST(TexturedGlb, WritesOneFileThatReadsBackTheSame) {
   write_textured_mesh(quad, dir / "quad.glb");
   EXPECT_EQ(std::vector<fs::path>(fs::directory_iterator(dir), {}), std::vector<fs::path>{dir / "quad.glb"});
   expect_same_textured(read_textured_mesh(dir / "quad.glb"), quad);
+  // Deterministic: the same mesh gives the same bytes.
+  write_textured_mesh(quad, dir / "again.glb");
+  EXPECT_EQ(test::read_file(dir / "again.glb"), test::read_file(dir / "quad.glb"));
 }
 
 TEST(TexturedGlb, KeepsOneMaterialPerFace) {

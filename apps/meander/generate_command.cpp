@@ -25,11 +25,11 @@ Command add_generate_command(CLI::App& parent) {
   app->add_option("SHAPE", args->shape, "sphere, torus, pretzel (genus 2), genus (see --genus), grid (open disk), moebius")
       ->required()
       ->check(CLI::IsMember({"sphere", "torus", "pretzel", "genus", "grid", "moebius"}));
-  app->add_option("-o,--output", args->output, "output mesh (.obj .ply .stl .off)")->required();
+  app->add_option("-o,--output", args->output, "output mesh (.obj .ply .stl .off .glb)")->required();
   app->add_option("--faces", args->faces, "about how many faces")->check(CLI::Range(int64_t(1), int64_t(500'000'000)))->capture_default_str();
   app->add_option("--genus", args->genus, "genus of the 'genus' shape")->check(CLI::Range(0, 64))->capture_default_str();
   return {app, [args] {
-            require_output_path(args->output, {".obj", ".ply", ".stl", ".off"}, "-o");
+            require_output_path(args->output, {".obj", ".ply", ".stl", ".off", ".glb"}, "-o");
             const PolygonMesh mesh = make_shape(args->shape, args->faces, args->genus);
             write_mesh(mesh, args->output);
             std::fprintf(stderr, "wrote %s: %s, %d vertices, %d faces\n", args->output.c_str(), args->shape.c_str(),

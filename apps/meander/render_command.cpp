@@ -29,7 +29,8 @@ constexpr std::array<Rgb, 4> curve_colors{{{0.75f, 0.12f, 0.08f}, {0.1f, 0.3f, 0
 // reader's does.
 void read_input(const std::string& input, Scene& scene) {
   try {
-    scene.meshes.push_back({.mesh = read_mesh(input)});
+    TexturedMesh textured = read_textured_mesh(input);
+    scene.meshes.push_back({.mesh = std::move(textured.mesh), .appearance = std::move(textured.appearance)});
   } catch (const InputError& mesh_error) {
     Polylines curves;
     try {
@@ -65,7 +66,7 @@ void run_render(const RenderArgs& a) {
 Command add_render_command(CLI::App& parent) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* app = parent.add_subcommand("render", "Render meshes and curves to a PNG picture (ray traced on the CPU)");
-  app->add_option("IN", args->inputs, "meshes (.obj .ply .stl .off) and curves (.obj with l elements, .ply with edges)")
+  app->add_option("IN", args->inputs, "meshes (.obj with its MTL and textures, .glb .gltf .ply .stl .off) and curves (.obj with l elements, .ply with edges)")
       ->required();
   app->add_option("-o,--output", args->output, "output picture (.png); with --turntable N, the frames' name")->required();
   app->add_option("--occluder", args->occluders,

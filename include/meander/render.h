@@ -7,6 +7,7 @@
 #pragma once
 
 #include "meander/mesh.h"
+#include "meander/textured_mesh.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -33,6 +34,10 @@ struct SceneMesh {
   PolygonMesh mesh; // polygons are fanned from their first vertex
   Rgb color{0.8f, 0.8f, 0.8f};
   MeshStyle style = MeshStyle::shaded;
+  // With materials (textured_mesh.h), they colour the faces instead of `color`: the base
+  // colour times the texture, sampled bilinearly in linear light at the texture
+  // coordinate interpolated across the triangle. Must fit the mesh (check_appearance).
+  Appearance appearance;
 };
 
 struct SceneCurves {

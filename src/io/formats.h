@@ -28,6 +28,14 @@ Polylines read_ply_polylines(std::string_view bytes, std::string_view name);
 // vertex where a third edge arrives (naming that edge) and no edges at all.
 Polylines chain_edges(std::span<const Vec3> positions, std::span<const int32_t> edges, std::string_view name);
 
+// Textured formats: `path` names the file in messages and is where the files it refers
+// to (MTL, textures, glTF buffers and images) are found or written beside.
+TexturedMesh read_textured_obj(std::string_view bytes, const std::filesystem::path& path);
+TexturedMesh read_gltf(std::string_view bytes, const std::filesystem::path& path);
+void write_textured_obj(const TexturedMesh& mesh, const std::filesystem::path& path);
+void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
+void write_textured_glb(const TexturedMesh& mesh, AtomicFile& out);
+
 void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
 void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);

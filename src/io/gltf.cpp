@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <new>
 #include <optional>
 #include <unordered_map>
 
@@ -322,19 +323,21 @@ private:
 
 constexpr int array_buffer = 34962, element_array_buffer = 34963;
 
-// The binary chunk and the JSON that describes it, built up together.
+// The binary chunk and the JSON that describes it, built up together. The chunk's data
+// is not copied: the views point into arrays that must live until write().
 class GlbBuilder {
 public:
   GlbBuilder() {
     json_ = {{"asset", {{"version", "2.0"}, {"generator", "Meander"}}}, {"scene", 0}, {"scenes", {nlohmann::json::object()}}};
   }
 
-  // Appends bytes as a new buffer view, 4-byte aligned; returns its index.
+  // Adds bytes as a new buffer view, 4-byte aligned; returns its index.
   int view(const void* data, size_t size, int target) {
-    while (bin_.size() % 4 != 0) bin_.push_back('\0');
-    nlohmann::json v = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", size}};
+    bin_size_ = padded(bin_size_);
+    nlohmann::json v = {{"buffer", 0}, {"byteOffset", bin_size_}, {"byteLength", size}};
     if (target != 0) v["target"] = target;
-    bin_.append(static_cast<const char*>(data), size);
+    views_.push_back({static_cast<const char*>(data), size});
+    bin_size_ += size;
     return push("bufferViews", std::move(v));
   }
 
@@ -366,11 +369,11 @@ public:
   nlohmann::json& json() { return json_; }
 
   void write(AtomicFile& out) {
-    if (!bin_.empty()) json_["buffers"] = {{{"byteLength", bin_.size()}}};
+    if (bin_size_ > 0) json_["buffers"] = {{{"byteLength", bin_size_}}};
     std::string text = json_.dump();
-    while (text.size() % 4 != 0) text.push_back(' ');
-    while (bin_.size() % 4 != 0) bin_.push_back('\0');
-    const size_t total = 12 + 8 + text.size() + (bin_.empty() ? 0 : 8 + bin_.size());
+    text.resize(padded(text.size()), ' ');
+    const size_t bin_chunk = padded(bin_size_);
+    const size_t total = 12 + 8 + text.size() + (bin_size_ == 0 ? 0 : 8 + bin_chunk);
     if (total > UINT32_MAX) throw UsageError("GLB of " + std::to_string(total) + " bytes: glTF files hold at most 4 GiB");
     out.little_endian(uint32_t(0x46546C67)); // "glTF"
     out.little_endian(uint32_t(2));
@@ -378,10 +381,16 @@ public:
     out.little_endian(uint32_t(text.size()));
     out.little_endian(uint32_t(0x4E4F534A)); // "JSON"
     out.text(text);
-    if (bin_.empty()) return;
-    out.little_endian(uint32_t(bin_.size()));
+    if (bin_size_ == 0) return;
+    out.little_endian(uint32_t(bin_chunk));
     out.little_endian(uint32_t(0x004E4942)); // "BIN\0"
-    out.bytes(bin_.data(), bin_.size());
+    size_t written = 0;
+    for (const auto& [data, size] : views_) {
+      for (; written % 4 != 0; ++written) out.put('\0');
+      out.bytes(data, size);
+      written += size;
+    }
+    for (; written < bin_chunk; ++written) out.put('\0');
   }
 
 private:
@@ -389,8 +398,11 @@ private:
     return {{"bufferView", view}, {"componentType", component_type}, {"count", count}, {"type", type}};
   }
 
+  static size_t padded(size_t size) { return (size + 3) / 4 * 4; }
+
   nlohmann::json json_;
-  std::string bin_;
+  std::vector<std::pair<const char*, size_t>> views_;
+  size_t bin_size_ = 0;
 };
 
 // Area-weighted vertex normals of the fanned polygons, unit length; a vertex without
@@ -471,9 +483,17 @@ TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
   if (bytes.size() > UINT32_MAX) fail_input(name, "file too large for glTF (over 4 GiB)");
   const std::string folder = path.parent_path().empty() ? "." : path.parent_path().string();
   const bool binary = bytes.starts_with("glTF");
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warnings, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                       unsigned(bytes.size()), folder)
-                         : loader.LoadASCIIFromString(&model, &error, &warnings, bytes.data(), unsigned(bytes.size()), folder);
+  bool ok = false;
+  try {
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warnings, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                              unsigned(bytes.size()), folder)
+                : loader.LoadASCIIFromString(&model, &error, &warnings, bytes.data(), unsigned(bytes.size()), folder);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // tinygltf reports most problems in `error`, but its JSON library may still throw.
+    error = e.what();
+  }
   auto trimmed = [](std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
     for (char& c : s) c = c == '\n' ? ';' : c;
@@ -485,14 +505,17 @@ TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
 
 void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
   require_writable(mesh);
-  GlbBuilder glb;
   std::vector<uint32_t> indices;
+  std::vector<Vec3> normals;
+  GlbBuilder glb; // after the arrays its views point into
+  indices.reserve(3 * size_t(std::max(0, mesh.num_corners() - 2 * mesh.num_faces())));
   for (int32_t f = 0; f < mesh.num_faces(); ++f) fan(mesh, f, [&](int32_t c) { return uint32_t(mesh.face_vertices[c]); }, indices);
   nlohmann::json primitives = nlohmann::json::array();
   if (!indices.empty()) {
     const int positions = glb.vec3_accessor(mesh.positions, true);
-    const int normals = options.normals ? glb.vec3_accessor(vertex_normals(mesh), false) : -1;
-    primitives.push_back(primitive(positions, normals, -1, glb.index_accessor(indices), -1));
+    if (options.normals) normals = vertex_normals(mesh);
+    const int normal_accessor = options.normals ? glb.vec3_accessor(normals, false) : -1;
+    primitives.push_back(primitive(positions, normal_accessor, -1, glb.index_accessor(indices), -1));
   }
   add_scene_mesh(glb, std::move(primitives));
   glb.write(out);
@@ -523,7 +546,9 @@ void write_textured_glb(const TexturedMesh& textured, AtomicFile& out) {
     texcoords.push_back(t);
   }
 
-  GlbBuilder glb;
+  std::vector<std::string> pngs(a.materials.size());
+  std::vector<std::vector<uint32_t>> indices(a.materials.size());
+  GlbBuilder glb; // after the arrays its views point into
   int sampler = -1;
   for (size_t k = 0; k < a.materials.size(); ++k) {
     const Material& m = a.materials[k];
@@ -531,7 +556,7 @@ void write_textured_glb(const TexturedMesh& textured, AtomicFile& out) {
                           {"metallicFactor", 0.0},
                           {"roughnessFactor", 1.0}};
     if (!m.texture.empty()) {
-      const std::string png = encode_png(m.texture.rgba.data(), m.texture.width, m.texture.height, 4, m.name);
+      const std::string& png = pngs[k] = encode_png(m.texture.rgba.data(), m.texture.width, m.texture.height, 4, m.name);
       // Linear filtering without mipmaps: a texture atlas must not bleed between its tiles.
       if (sampler < 0) sampler = glb.push("samplers", {{"magFilter", 9729}, {"minFilter", 9729}});
       const int image = glb.push("images", {{"bufferView", glb.view(png.data(), png.size(), 0)}, {"mimeType", "image/png"}});
@@ -547,7 +572,6 @@ void write_textured_glb(const TexturedMesh& textured, AtomicFile& out) {
     const bool textured = std::any_of(a.materials.begin(), a.materials.end(), [](const Material& m) { return !m.texture.empty(); });
     const int texcoord_accessor = textured ? glb.vec2_accessor(texcoords) : -1;
     // One primitive per material, its faces in mesh order.
-    std::vector<std::vector<uint32_t>> indices(a.materials.size());
     for (int32_t f = 0; f < mesh.num_faces(); ++f) {
       const size_t m = a.face_material.empty() ? 0 : size_t(a.face_material[size_t(f)]);
       fan(mesh, f, [&](int32_t c) { return corner_vertex[size_t(c)]; }, indices[m]);

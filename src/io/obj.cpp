@@ -1,53 +1,14 @@
 #include "io/formats.h"
-#include "io/reader_support.h"
-#include "io/text_cursor.h"
+#include "io/obj_indices.h"
 
 #include <algorithm>
 
 namespace meander::io {
-namespace {
-
-// `element` is "face" or "line".
-std::string missing_vertex(std::string_view element, int64_t index, int64_t vertex_count) {
-  return std::string(element) + " references vertex " + std::to_string(index) + " but only " +
-         std::to_string(vertex_count) + " exist";
-}
-
-void read_position(TextCursor& in, std::vector<Vec3>& positions) {
-  if (int64_t(positions.size()) == max_count) in.fail(too_many(uint64_t(max_count) + 1, "vertices"));
-  const float x = in.real("vertex coordinate");
-  const float y = in.real("vertex coordinate");
-  const float z = in.real("vertex coordinate");
-  positions.push_back({x, y, z});
-}
-
-// A positive index may point forward, to a vertex defined further down, so positive
-// indices are checked once at the end against the final count: the largest one and its
-// line are enough to report the problem.
-struct ForwardIndices {
-  int64_t largest = 0, line = 0;
-
-  int32_t read(TextCursor& in, std::string_view element, int64_t vertex_count) {
-    const int64_t index = in.integer("vertex index", '/');
-    if (index > 0) {
-      if (index > largest) largest = index, line = in.line();
-      return int32_t(index - 1);
-    }
-    if (index < 0 && index >= -vertex_count) return int32_t(vertex_count + index);
-    in.fail(index == 0 ? "vertex index 0 is invalid (OBJ indices start at 1)"
-                       : missing_vertex(element, index, vertex_count));
-  }
-  void check(std::string_view name, std::string_view element, int64_t vertex_count) const {
-    if (largest > vertex_count) fail_at_line(name, line, missing_vertex(element, largest, vertex_count));
-  }
-};
-
-} // namespace
 
 PolygonMesh read_obj(std::string_view bytes, std::string_view name) {
   TextCursor in(bytes, name);
   PolygonMesh mesh;
-  ForwardIndices forward;
+  ForwardIndices forward{"vertex"};
   while (!in.at_end()) {
     if (!in.at_line_end()) {
       const std::string_view keyword = in.word();
@@ -56,7 +17,8 @@ PolygonMesh read_obj(std::string_view bytes, std::string_view name) {
       } else if (keyword == "f") {
         const int64_t vertex_count = int64_t(mesh.positions.size());
         const size_t first = mesh.face_vertices.size();
-        while (!in.at_line_end()) mesh.face_vertices.push_back(forward.read(in, "face", vertex_count));
+        while (!in.at_line_end())
+          mesh.face_vertices.push_back(forward.resolve(in, in.integer("vertex index", '/'), "face", vertex_count));
         if (const size_t size = mesh.face_vertices.size() - first; size < 3) in.fail(too_few_vertices(int64_t(size)));
         mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
       }
@@ -76,7 +38,7 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
   std::vector<Vec3> positions;
   std::vector<int32_t> start{0}, indices;
   std::vector<uint8_t> open;
-  ForwardIndices forward;
+  ForwardIndices forward{"vertex"};
   while (!in.at_end()) {
     if (!in.at_line_end()) {
       const std::string_view keyword = in.word();
@@ -84,7 +46,8 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
         read_position(in, positions);
       } else if (keyword == "l") {
         const size_t first = indices.size();
-        while (!in.at_line_end()) indices.push_back(forward.read(in, "line", int64_t(positions.size())));
+        while (!in.at_line_end())
+          indices.push_back(forward.resolve(in, in.integer("vertex index", '/'), "line", int64_t(positions.size())));
         const size_t size = indices.size() - first;
         if (size < 2) in.fail("line with " + std::to_string(size) + " vertices (at least 2 needed)");
         // A repeated first index (as write_polylines writes closed loops) is the
