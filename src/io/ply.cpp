@@ -1,4 +1,5 @@
 #include "io/binary.h"
+#include "io/block_writer.h"
 #include "io/formats.h"
 #include "io/reader_support.h"
 #include "io/text_cursor.h"
@@ -559,14 +560,24 @@ void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicF
     return;
   }
   write_binary_points(out, mesh.positions);
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-    const std::span<const int32_t> face = mesh.face(f);
-    if (wide_lengths)
-      out.little_endian(uint32_t(face.size()));
-    else
-      out.little_endian(uint8_t(face.size()));
-    for (int32_t v : face) out.little_endian(v);
-  }
+  const size_t length_bytes = wide_lengths ? 4 : 1;
+  write_blocks(out, mesh.num_faces(), 1 << 16, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
+    const size_t corners = size_t(mesh.face_start[size_t(end)] - mesh.face_start[size_t(begin)]);
+    bytes.resize(length_bytes * size_t(end - begin) + 4 * corners);
+    char* at = bytes.data();
+    for (int64_t f = begin; f < end; ++f) {
+      const std::span<const int32_t> face = mesh.face(int32_t(f));
+      if (wide_lengths)
+        store_little_endian(at, uint32_t(face.size()));
+      else
+        store_little_endian(at, uint8_t(face.size()));
+      at += length_bytes;
+      for (const int32_t v : face) {
+        store_little_endian(at, v);
+        at += 4;
+      }
+    }
+  });
 }
 
 } // namespace meander::io
