@@ -1,0 +1,23 @@
+#!/bin/sh
+# The wire figures of docs/wires.md, made by `meander wire --png` (run by `make gallery`).
+# MEANDER is the CLI, MESHES the real meshes (../shared/meshes).
+set -eu
+cd "$(dirname "$0")"
+MEANDER=${MEANDER:-../build/meander}
+MESHES=${MESHES:-../../shared/meshes}
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+
+# Figures 8 and 12 of the paper: constant vs variable, wire vs ribbon, on one sphere.
+for method in constant variable; do
+  for shape in wire ribbon; do
+    "$MEANDER" wire "$MESHES/sphere.obj" -o "$OUT/sphere.stl" --method "$method" --shape "$shape" --seed 3 \
+      --png "images/wire_sphere_${method}_${shape}.png" --size 300x300 --view 20,20
+  done
+done
+# Figure 2: dense ribbons (s = t = 0.8) that almost cover the surface.
+"$MEANDER" wire "$MESHES/spot_triangulated.obj" -o "$OUT/spot.ply" --method variable --shape ribbon --s 0.8 --t 0.8 \
+  --png images/wire_spot_dense_ribbon.png --size 440x440 --view 60,20
+# Figure 14: constant-diameter wires on a quad mesh used as it is.
+"$MEANDER" wire "$MESHES/spot_quadrangulated.obj" --quad none --radius 0.0035 -o "$OUT/spot_quads.stl" \
+  --png images/wire_spot_quads.png --size 440x440 --view 60,20
