@@ -14,17 +14,13 @@ namespace {
 
 struct CurveArgs {
   std::string input, output, triangles, png;
-  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
+  CurveFlags curve;
   PictureArgs picture;
-  uint64_t seed = 1;
-  int samples = 4;
   bool strict = false, verbose = false;
 };
 
 void run_curve(const CurveArgs& a) {
-  const CurveJob job{.quadrangulation = parse_quadrangulation(a.quad),
-                     .cycle = {.tree = parse_tree_strategy(a.tree), .seed = a.seed},
-                     .curve = {.smoothing = parse_smoothing(a.smooth), .samples = a.samples}};
+  const CurveJob job = curve_job(a.curve);
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -70,11 +66,7 @@ Command add_curve_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("curve", "Make the closed curve(s) that cover a mesh's surface (one per connected component)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
   app->add_option("-o,--output", args->output, "output curve: .obj (l elements), .ply (binary edges), .json, .svg")->required();
-  app->add_option("--quad", args->quad, "quadrangulation")->check(CLI::IsMember({"dual-simplest", "catmull-clark", "none"}))->capture_default_str();
-  app->add_option("--tree", args->tree, "spanning tree strategy: the style of the meander")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
-  app->add_option("--seed", args->seed, "random seed (same seed, same output)")->capture_default_str();
-  app->add_option("--smooth", args->smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
-  app->add_option("--samples", args->samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
+  add_curve_flags(*app, args->curve);
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
   CLI::Option* png = app->add_option(
       "--png", args->png, "also render the curve to this picture (.png), the surface hiding its back parts");

@@ -1,5 +1,6 @@
 #include "cli_support.h"
 #include "commands.h"
+#include "picture_options.h"
 
 #include "meander/error.h"
 #include "meander/io.h"
@@ -18,8 +19,9 @@ namespace {
 
 struct WireArgs {
   std::string input, output, report, png;
-  std::string method = "constant", shape = "wire", radius = "auto", view = "iso", size = "1600x1200";
+  std::string method = "constant", shape = "wire", radius = "auto";
   CurveFlags curve;
+  PictureArgs picture;
   int sides = 8, levels = 2;
   double s = 0.6, t = 0.6, thickness = 0;
   bool strict = false, verbose = false;
@@ -44,8 +46,7 @@ void run_wire(const WireArgs& a) {
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
-  RenderOptions picture{.view = parse_view(a.view)};
-  parse_size(a.size, picture.width, picture.height);
+  const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log);
@@ -72,15 +73,17 @@ void run_wire(const WireArgs& a) {
   write_mesh(wire, a.output);
   log.lap("write wire");
   if (!a.report.empty()) write_printability_report(report, a.report);
+  std::string picture_written;
   if (!a.png.empty()) {
     Scene scene;
     scene.meshes.push_back({.mesh = std::move(wire), .color = {0.72f, 0.45f, 0.2f}});
-    write_png(render(scene, picture), a.png);
+    picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");
   }
   std::string summary = a.output + ": " + printability_summary(report);
   if (constant) summary += " Radius " + std::to_string(radius) + (a.radius == "auto" ? " (auto)." : ".");
   std::fprintf(stderr, "%s\n", summary.c_str());
+  if (!a.png.empty()) log.note("wrote " + picture_written);
 }
 
 } // namespace
@@ -103,9 +106,8 @@ Command add_wire_command(CLI::App& parent) {
   app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the local ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--report", args->report, "also write the printability report (.json)");
-  app->add_option("--png", args->png, "also render the wire to this picture (.png)");
-  app->add_option("--view", args->view, "view of the --png picture: front, back, left, right, top, iso or AZ,EL in degrees")->capture_default_str();
-  app->add_option("--size", args->size, "size of the --png picture, WIDTHxHEIGHT")->capture_default_str();
+  CLI::Option* png = app->add_option("--png", args->png, "also render the wire to this picture (.png)");
+  add_picture_options(*app, args->picture, "the --png picture", png);
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took");
   return {app, [args] { run_wire(*args); }};
