@@ -260,20 +260,26 @@ std::vector<int32_t> label_components(const PolygonMesh& mesh, const Connectivit
 
 // Fills report.components and report.volume; returns the component of each input face
 // (-1 for a face that repeats a vertex).
-std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles& tris, PrintabilityReport& report) {
+std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles& tris, bool degenerate_faces,
+                                        PrintabilityReport& report) {
   // Faces that repeat a vertex have no place in an edge structure; they are not part of
-  // a watertight mesh anyway (inspect() counts them), so they are left out here.
-  PolygonMesh polygons;
-  polygons.positions = mesh.positions;
-  std::vector<int32_t> original; // face of `mesh` for each face of `polygons`
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-    const std::span<const int32_t> v = mesh.face(f);
-    std::vector<int32_t> sorted(v.begin(), v.end());
-    std::sort(sorted.begin(), sorted.end());
-    if (v.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-    polygons.add_face(v);
-    original.push_back(f);
+  // a watertight mesh anyway (inspect() counts them), so a copy leaves them out when
+  // there are any.
+  PolygonMesh cleaned;
+  std::vector<int32_t> original; // face of `mesh` for each face of `cleaned`
+  if (degenerate_faces) {
+    cleaned.positions = mesh.positions;
+    std::vector<int32_t> sorted;
+    for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+      const std::span<const int32_t> v = mesh.face(f);
+      sorted.assign(v.begin(), v.end());
+      std::sort(sorted.begin(), sorted.end());
+      if (v.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+      cleaned.add_face(v);
+      original.push_back(f);
+    }
   }
+  const PolygonMesh& polygons = degenerate_faces ? cleaned : mesh;
   const Connectivity c = build_connectivity(polygons);
   int32_t count = 0;
   const std::vector<int32_t> label = label_components(polygons, c, count);
@@ -307,7 +313,8 @@ std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles
   // tetrahedron with the origin. Relative to a point near the mesh (the box's centre) to
   // keep the terms small when the model sits far from the origin.
   std::vector<int32_t> component_of_face(size_t(mesh.num_faces()), -1);
-  for (int32_t f = 0; f < polygons.num_faces(); ++f) component_of_face[size_t(original[size_t(f)])] = label[size_t(f)];
+  for (int32_t f = 0; f < polygons.num_faces(); ++f)
+    component_of_face[size_t(degenerate_faces ? original[size_t(f)] : f)] = label[size_t(f)];
   const Box3& box = report.bounding_box;
   const P3 centre = box.empty() ? P3{0, 0, 0} : to_p3((box.min + box.max) * 0.5f);
   for (size_t i = 0; i < tris.corners.size(); ++i) {
@@ -417,7 +424,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
 
   const Triangles tris = fan(mesh);
   report.triangles = int64_t(tris.corners.size());
-  const std::vector<int32_t> component = measure_components(mesh, tris, report);
+  const std::vector<int32_t> component = measure_components(mesh, tris, topology.degenerate_faces > 0, report);
 
   std::vector<uint8_t> skip(tris.corners.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
