@@ -118,9 +118,12 @@ std::array<float, 4> bspline_weights(float u) {
 // Quads between consecutive rings of `width` vertices (ring i starts at first + i *
 // width), closing the last ring onto the first with its vertex j joined to the first
 // ring's vertex (j + shift) mod width. Open rings (a ribbon's rungs) get no quad from
-// their last vertex back to their first.
-void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t width, bool closed_ring, int32_t shift) {
+// their last vertex back to their first. With `keep`, only the rings i with keep[i] set
+// get their quads to the next ring.
+void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t width, bool closed_ring, int32_t shift,
+                   const uint8_t* keep = nullptr) {
   for (int32_t i = 0; i < rings; ++i) {
+    if (keep && !keep[i]) continue;
     const bool last = i + 1 == rings;
     const int32_t a = first + i * width, b = first + (last ? 0 : i + 1) * width;
     for (int32_t j = 0; j < (closed_ring ? width : width - 1); ++j) {
@@ -133,68 +136,105 @@ void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t widt
 
 } // namespace
 
-PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
-  const bool ribbon = options.shape == WireShape::ribbon;
-  if (!(options.radius > 0) || !std::isfinite(options.radius))
-    throw UsageError("the wire radius must be a positive number (got " + std::to_string(options.radius) + ")");
-  if (!ribbon && options.sides < 3) throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
-  const Polylines centre = cycle_curves(quads, cycle, options.curve);
-  const Ladder ladder = make_ladder(quads, cycle);
-  const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
-  // A ribbon is the sweep of a two-point section at +-90 degrees from the normal.
-  const int32_t width = ribbon ? 2 : options.sides;
+namespace {
 
-  PolygonMesh mesh;
-  mesh.positions.reserve(centre.points.size() * size_t(width));
-  mesh.face_vertices.reserve(centre.points.size() * size_t(width) * 4);
-  mesh.face_start.reserve(centre.points.size() * size_t(width) + 1);
-  for (int32_t c = 0; c < centre.size(); ++c) {
-    const auto points = centre.polyline(c);
-    const int32_t m = int32_t(points.size());
+// The swept section's frame at every point of the smooth curve: computed once, so that
+// --radius auto can try several radii on it.
+struct Sweep {
+  Polylines centre;
+  std::vector<Vec3> normal, binormal; // per point
+  std::vector<uint8_t> mobius;        // per cycle
+};
+
+Sweep sweep_frames(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& curve) {
+  Sweep sweep;
+  sweep.centre = cycle_curves(quads, cycle, curve);
+  const Ladder ladder = make_ladder(quads, cycle);
+  sweep.mobius = ladder.mobius;
+  sweep.normal.resize(sweep.centre.points.size());
+  sweep.binormal.resize(sweep.centre.points.size());
+  const int32_t k = curve.smoothing == Smoothing::none ? 1 : curve.samples;
+  for (int32_t c = 0; c < sweep.centre.size(); ++c) {
+    const auto points = sweep.centre.polyline(c);
+    const int32_t m = int32_t(points.size()), first = sweep.centre.start[size_t(c)];
     const size_t first_triangle = size_t(cycle.cycle_start[size_t(c)]);
     const int32_t triangles = cycle.cycle_start[size_t(c) + 1] - cycle.cycle_start[size_t(c)];
-    const bool mobius = ladder.mobius[size_t(c)];
-    // On a Moebius cycle the last section must land on the first turned by half a turn.
-    // A polygon with an even number of sides maps onto itself that way; an odd one needs
-    // an extra turn of -pi/sides, spread evenly along the loop so no segment twists.
-    const int32_t shift = mobius ? width / 2 : 0;
-    const double twist = mobius ? 2 * std::numbers::pi * shift / width - std::numbers::pi : 0.0;
     // The surface normal at each control point, weighted like the point itself.
     std::vector<Vec3> control_normal(static_cast<size_t>(triangles));
-    for (int32_t k = 0; k < triangles; ++k) {
-      const size_t i = first_triangle + size_t(k);
+    for (int32_t t = 0; t < triangles; ++t) {
+      const size_t i = first_triangle + size_t(t);
       const auto [p, apex, n] = cycle_triangle(quads, cycle.order[i]);
       const Vec3 sum = surface_normal(ladder, c, i, apex) * 2.0f + surface_normal(ladder, c, i, p) + surface_normal(ladder, c, i, n);
-      control_normal[size_t(k)] = norm(sum) > 0 ? normalized(sum) : ladder.up[i];
+      control_normal[size_t(t)] = norm(sum) > 0 ? normalized(sum) : ladder.up[i];
     }
     auto up = [&](int32_t control) {
       const int32_t wrapped = (control % triangles + triangles) % triangles;
       const Vec3 u = control_normal[size_t(wrapped)];
-      return mobius && wrapped != control ? u * -1.0f : u;
+      return ladder.mobius[size_t(c)] && wrapped != control ? u * -1.0f : u;
     };
-    const int32_t base = mesh.num_vertices();
     Vec3 tangent{}, normal{};
     for (int32_t i = 0; i < m; ++i) {
-      const int32_t segment = i / k;
       const auto w = bspline_weights(float(i % k) / float(k));
       Vec3 blended{};
-      for (int j = 0; j < 4; ++j) blended = blended + up(segment - 1 + j) * w[size_t(j)];
+      for (int j = 0; j < 4; ++j) blended = blended + up(i / k - 1 + j) * w[size_t(j)];
       // A repeated point has no direction of its own: it keeps the previous frame.
       if (const Vec3 t = section_normal(points[size_t((i + m - 1) % m)], points[size_t(i)], points[size_t((i + 1) % m)]);
           norm(t) > 0)
         tangent = t;
       if (const Vec3 nrm = normalized(blended - tangent * float(dot(blended, tangent))); norm(nrm) > 0) normal = nrm;
-      const Vec3 binormal = cross(tangent, normal);
-      const double offset = twist * i / m;
+      sweep.normal[size_t(first + i)] = normal;
+      sweep.binormal[size_t(first + i)] = cross(tangent, normal);
+    }
+  }
+  return sweep;
+}
+
+// The tube (wire) or band (ribbon) of `radius` around the sweep: every section's
+// vertices, and the faces of the segments `keep` selects (all if it is empty).
+PolygonMesh sweep_mesh(const Sweep& sweep, WireShape shape, int32_t sides, double radius, const std::vector<uint8_t>& keep = {}) {
+  const bool ribbon = shape == WireShape::ribbon;
+  // A ribbon is the sweep of a two-point section at +-90 degrees from the normal.
+  const int32_t width = ribbon ? 2 : sides;
+  std::vector<double> cos_a(static_cast<size_t>(width)), sin_a(static_cast<size_t>(width));
+  for (int32_t j = 0; j < width; ++j) {
+    const double angle = ribbon ? (j == 0 ? -0.5 : 0.5) * std::numbers::pi : 2 * std::numbers::pi * (j + 0.5) / width;
+    cos_a[size_t(j)] = std::cos(angle);
+    sin_a[size_t(j)] = std::sin(angle);
+  }
+  PolygonMesh mesh;
+  const size_t points = sweep.centre.points.size();
+  mesh.positions.resize(points * size_t(width));
+  mesh.face_vertices.reserve(points * size_t(width) * 4);
+  mesh.face_start.reserve(points * size_t(width) + 1);
+  for (int32_t c = 0; c < sweep.centre.size(); ++c) {
+    const int32_t first = sweep.centre.start[size_t(c)], m = sweep.centre.start[size_t(c) + 1] - first;
+    // On a Moebius cycle the last section must land on the first turned by half a turn.
+    // A polygon with an even number of sides maps onto itself that way; an odd one needs
+    // an extra turn of -pi/sides, spread evenly along the loop so no segment twists.
+    const int32_t shift = sweep.mobius[size_t(c)] ? width / 2 : 0;
+    const double twist = sweep.mobius[size_t(c)] ? 2 * std::numbers::pi * shift / width - std::numbers::pi : 0.0;
+    for (int32_t i = 0; i < m; ++i) {
+      const size_t g = size_t(first + i);
+      const double co = std::cos(twist * i / m), so = std::sin(twist * i / m);
       for (int32_t j = 0; j < width; ++j) {
-        const double angle = ribbon ? (j == 0 ? -0.5 : 0.5) * std::numbers::pi : 2 * std::numbers::pi * (j + 0.5) / width;
-        const double a = angle + offset;
-        mesh.positions.push_back(points[size_t(i)] + (normal * float(std::cos(a)) + binormal * float(std::sin(a))) * float(options.radius));
+        const double ca = cos_a[size_t(j)] * co - sin_a[size_t(j)] * so, sa = sin_a[size_t(j)] * co + cos_a[size_t(j)] * so;
+        mesh.positions[g * size_t(width) + size_t(j)] =
+            sweep.centre.points[g] + (sweep.normal[g] * float(ca) + sweep.binormal[g] * float(sa)) * float(radius);
       }
     }
-    connect_rings(mesh, base, m, width, !ribbon, shift);
+    connect_rings(mesh, first * width, m, width, !ribbon, shift, keep.empty() ? nullptr : keep.data() + first);
   }
   return mesh;
+}
+
+} // namespace
+
+PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  if (!(options.radius > 0) || !std::isfinite(options.radius))
+    throw UsageError("the wire radius must be a positive number (got " + std::to_string(options.radius) + ")");
+  if (options.shape == WireShape::wire && options.sides < 3)
+    throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
+  return sweep_mesh(sweep_frames(quads, cycle, options.curve), options.shape, options.sides, options.radius);
 }
 
 namespace {
@@ -372,32 +412,24 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
 
 double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
   const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
-  const Polylines centre = cycle_curves(quads, cycle, options.curve);
+  const Sweep sweep = sweep_frames(quads, cycle, options.curve);
   constexpr double step = 1.1, steps = 3, reach = 1.35; // reach >= step^steps
-  const Clearance clearance = tube_clearance(centre, k, reach);
+  const Clearance clearance = tube_clearance(sweep.centre, k, reach);
   double radius = clearance.radius;
   if (!(radius > 0)) return 0;
   // Only the pieces of tube within two points of a spot whose bound is below the largest
   // radius tried can collide; the check looks at those pieces alone.
-  const int32_t width = options.shape == WireShape::ribbon ? 1 : options.sides; // faces per point
-  std::vector<uint8_t> near(centre.points.size());
-  for (int32_t c = 0; c < centre.size(); ++c) {
-    const int32_t first = centre.start[size_t(c)], m = centre.start[size_t(c) + 1] - first;
+  std::vector<uint8_t> near(sweep.centre.points.size());
+  for (int32_t c = 0; c < sweep.centre.size(); ++c) {
+    const int32_t first = sweep.centre.start[size_t(c)], m = sweep.centre.start[size_t(c) + 1] - first;
     for (int32_t i = 0; i < m; ++i)
       if (clearance.local[size_t(first + i)] < radius * reach)
         for (int32_t j = -2; j <= 2; ++j) near[size_t(first + ((i + j) % m + m) % m)] = 1;
   }
   for (int s = 0; s < steps; ++s) {
-    ConstantWireOptions trial = options;
-    trial.radius = radius * step;
-    const PolygonMesh wire = constant_wire(quads, cycle, trial);
-    PolygonMesh pieces;
-    pieces.positions = wire.positions;
-    for (size_t g = 0; g < near.size(); ++g)
-      if (near[g])
-        for (int32_t f = int32_t(g) * width; f < int32_t(g + 1) * width; ++f) pieces.add_face(wire.face(f));
+    const PolygonMesh pieces = sweep_mesh(sweep, options.shape, options.sides, radius * step, near);
     if (check_printability(pieces, {.thickness = false}).self_intersecting) break;
-    radius = trial.radius;
+    radius *= step;
   }
   return radius;
 }
