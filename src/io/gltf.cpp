@@ -569,8 +569,8 @@ void write_textured_glb(const TexturedMesh& textured, AtomicFile& out) {
   if (!positions.empty()) {
     const int position_accessor = glb.vec3_accessor(positions, true);
     const int normal_accessor = glb.vec3_accessor(normals, false);
-    const bool textured = std::any_of(a.materials.begin(), a.materials.end(), [](const Material& m) { return !m.texture.empty(); });
-    const int texcoord_accessor = textured ? glb.vec2_accessor(texcoords) : -1;
+    const bool any_texture = std::any_of(a.materials.begin(), a.materials.end(), [](const Material& m) { return !m.texture.empty(); });
+    const int texcoord_accessor = any_texture ? glb.vec2_accessor(texcoords) : -1;
     // One primitive per material, its faces in mesh order.
     for (int32_t f = 0; f < mesh.num_faces(); ++f) {
       const size_t m = a.face_material.empty() ? 0 : size_t(a.face_material[size_t(f)]);
