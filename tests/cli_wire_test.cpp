@@ -94,6 +94,28 @@ TEST(CliWireOutput, EveryFormatIsWritten) {
   }
 }
 
+// --png renders the result in one step, with the picture options of `render`.
+TEST(CliWireOutput, PngOfTheResult) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  const std::string mesh = (shared_meshes() / "tetrahedron.obj").string();
+  for (const char* shape : {"wire", "ribbon"}) {
+    const auto png = dir / (std::string(shape) + ".png");
+    const CommandResult r = run_cli({"wire", mesh, "-o", (dir / "w.stl").string(), "--shape", shape, "--samples", "1",
+                                     "--png", png.string(), "--size", "120x90"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_file(png).substr(1, 3), "PNG") << shape;
+  }
+  const CommandResult r = run_cli({"wire", mesh, "-o", (dir / "w.stl").string(), "--samples", "1", "--png",
+                                   (dir / "spin.png").string(), "--size", "60x40", "--turntable", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* frame : {"spin_000.png", "spin_001.png", "spin_002.png"}) EXPECT_TRUE(std::filesystem::exists(dir / frame));
+  // A bad picture option is refused before any work: no mesh either.
+  const CommandResult bad = run_cli({"wire", mesh, "-o", (dir / "none.stl").string(), "--png", (dir / "x.png").string(), "--view", "sideways"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.stl"));
+}
+
 // Bad parameters are usage errors (exit 2) named on stderr, and nothing is written.
 TEST(CliWireOutput, BadParametersAreRefused) {
   MEANDER_REQUIRE_SHARED_MESHES();

@@ -77,6 +77,12 @@ void run_wire(const WireArgs& a) {
   if (!a.png.empty()) {
     Scene scene;
     scene.meshes.push_back({.mesh = std::move(wire), .color = {0.72f, 0.45f, 0.2f}});
+    // A wire half sunk in its surface shows its outer half, and the surface hides the
+    // wires behind it, as in the paper's figures. A ribbon lies in the surface, which
+    // would hide it half the time: it is drawn alone.
+    if (shape == WireShape::wire)
+      scene.meshes.push_back({.mesh = cycle_triangles(curve.quads, curve.cycle), .color = {0.82f, 0.82f, 0.82f},
+                              .style = occluder_style(a.picture)});
     picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");
   }
@@ -106,7 +112,7 @@ Command add_wire_command(CLI::App& parent) {
   app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the local ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--report", args->report, "also write the printability report (.json)");
-  CLI::Option* png = app->add_option("--png", args->png, "also render the wire to this picture (.png)");
+  CLI::Option* png = app->add_option("--png", args->png, "also render the result to this picture (.png); a wire's surface hides its back parts");
   add_picture_options(*app, args->picture, "the --png picture", png);
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took");
