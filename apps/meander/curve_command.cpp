@@ -64,7 +64,7 @@ void run_curve(const CurveArgs& a) {
 Command add_curve_command(CLI::App& parent) {
   auto args = std::make_shared<CurveArgs>();
   CLI::App* app = parent.add_subcommand("curve", "Make the closed curve(s) that cover a mesh's surface (one per connected component)");
-  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_option("-o,--output", args->output, "output curve: .obj (l elements), .ply (binary edges), .json, .svg")->required();
   add_curve_flags(*app, args->curve);
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");

@@ -101,7 +101,7 @@ void print_text(const std::string& input, const MeshReport& r, const Printabilit
 Command add_info_command(CLI::App& parent) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* app = parent.add_subcommand("info", "Describe a mesh: counts, topology per component, and every problem found");
-  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_flag("--json", args->json, "print JSON instead of text");
   app->add_flag("--solid", args->solid,
                 "also check it as a solid to 3D-print: watertight, volume, self-intersections, minimum thickness");

@@ -97,7 +97,7 @@ void run_wire(const WireArgs& a) {
 Command add_wire_command(CLI::App& parent) {
   auto args = std::make_shared<WireArgs>();
   CLI::App* app = parent.add_subcommand("wire", "Make a wire or ribbon sculpture from the surface-covering curve (3D-printable)");
-  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off)")->required();
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_option("-o,--output", args->output, "output mesh: .stl, .ply (binary), .obj, .off, .glb, .3mf")->required();
   app->add_option("--method", args->method, "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
                                             "inside the cycle's triangles, smoothed by Catmull-Clark")
