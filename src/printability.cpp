@@ -7,16 +7,18 @@
 #include "triangle_bvh.h"
 #include "union_find.h"
 
+#include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <mutex>
+#include <memory>
 
 namespace meander {
 namespace {
@@ -194,50 +196,28 @@ bool degenerate(const PolygonMesh& mesh, const std::array<int32_t, 3>& t) {
   return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
-std::vector<TriangleBvh::Box> triangle_boxes(const PolygonMesh& mesh, const Triangles& tris) {
-  std::vector<TriangleBvh::Box> boxes(tris.corners.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) {
-      TriangleBvh::Box& b = boxes[i];
-      for (int32_t v : tris.corners[i]) b.extend(mesh.positions[size_t(v)]);
-    }
-  });
-  return boxes;
-}
-
-// The first intersecting pair in the order of PrintabilityReport::first_intersection.
-// Triangles are visited in parallel; each one past the best found so far is skipped, and
-// each one visited looks at all its candidates, so the answer does not depend on timing.
+// The first intersecting pair in the order of PrintabilityReport::first_intersection:
+// the least (i, j), i < j, in lexicographic order. Pairs are met in parallel in any
+// order; each one not below the best found so far is dismissed untested, and the best
+// only ever decreases, so the answer is that least pair whatever the timing.
 std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Triangles& tris,
-                                               const std::vector<uint8_t>& skip, const TriangleBvh& bvh,
-                                               const std::vector<TriangleBvh::Box>& boxes) {
-  const int32_t n = int32_t(tris.corners.size());
-  std::atomic<int32_t> best{n};
-  std::mutex found_lock;
-  std::vector<std::array<int32_t, 2>> found;
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 256), [&](const tbb::blocked_range<int32_t>& r) {
-    for (int32_t i = r.begin(); i < r.end(); ++i) {
-      if (i >= best.load(std::memory_order_relaxed)) return;
-      if (skip[size_t(i)]) continue;
-      int32_t partner = n;
-      bvh.for_each_overlap(boxes[size_t(i)], [&](int32_t j) {
-        if (j <= i || j >= partner || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)] ||
-            !boxes[size_t(i)].overlaps(boxes[size_t(j)]))
-          return;
-        if (intersect(mesh, tris, i, j)) partner = j;
-      });
-      if (partner == n) continue;
-      int32_t current = best.load();
-      while (i < current && !best.compare_exchange_weak(current, i)) {
-      }
-      const std::lock_guard lock(found_lock);
-      found.push_back({i, partner});
+                                               const std::vector<uint8_t>& skip, const TriangleBvh& bvh) {
+  const auto key = [](int32_t i, int32_t j) { return uint64_t(uint32_t(i)) << 32 | uint32_t(j); };
+  constexpr uint64_t none = std::numeric_limits<uint64_t>::max();
+  std::atomic<uint64_t> best{none};
+  bvh.for_each_overlapping_pair([&](int32_t a, int32_t b) {
+    const int32_t i = std::min(a, b), j = std::max(a, b);
+    const uint64_t k = key(i, j);
+    if (k >= best.load(std::memory_order_relaxed) || skip[size_t(i)] || skip[size_t(j)] ||
+        tris.face[size_t(i)] == tris.face[size_t(j)] || !intersect(mesh, tris, i, j))
       return;
+    uint64_t current = best.load();
+    while (k < current && !best.compare_exchange_weak(current, k)) {
     }
   });
-  if (found.empty()) return {-1, -1};
-  const std::array<int32_t, 2> first = *std::min_element(found.begin(), found.end());
-  return {tris.face[size_t(first[0])], tris.face[size_t(first[1])]};
+  const uint64_t first = best.load();
+  if (first == none) return {-1, -1};
+  return {tris.face[size_t(first >> 32)], tris.face[size_t(first & 0xffffffffu)]};
 }
 
 // Components of the faces joined across edges (shared by any number of faces), numbered
@@ -329,14 +309,43 @@ std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles
   return component_of_face;
 }
 
+// Embree's ray context with what its filter needs to leave out the triangles around the
+// vertex a ray starts from (Embree passes the context on to the filter).
+struct VertexRayContext {
+  RTCIntersectContext context;
+  const std::array<int32_t, 3>* corners;
+  int32_t vertex;
+};
+
+void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const VertexRayContext*>(args->context);
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] == 0) continue;
+    const std::array<int32_t, 3>& t = c->corners[RTCHitN_primID(args->hit, args->N, k)];
+    if (t[0] == c->vertex || t[1] == c->vertex || t[2] == c->vertex) args->valid[k] = 0;
+  }
+}
+
+struct EmbreeDevice {
+  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+};
+struct EmbreeScene {
+  void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+
 // `inward` per face: -1 to cast against the normals (a component of positive volume),
-// +1 along them (one turned inside out), 0 to cast no ray from its vertices. Rays are
-// tested against triangles by Möller-Trumbore in double.
-void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const TriangleBvh& bvh,
-                   const std::vector<int32_t>& inward, PrintabilityReport& report) {
+// +1 along them (one turned inside out), 0 to cast no ray from its vertices. Embree
+// finds the nearest triangle hit in float, in its robust mode, so that rays through
+// edges and vertices are not lost. The float distance is kept as it is: it does not
+// depend on which of several triangles tied at it Embree's tree reports, so the result
+// does not depend on the number of threads the tree was built with.
+void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::vector<int8_t>& inward,
+                   PrintabilityReport& report) {
   const int32_t nv = mesh.num_vertices();
-  std::vector<P3> normal(size_t(nv), P3{0, 0, 0});
-  std::vector<int32_t> vertex_side(size_t(nv), 0);
+  // Float, and no per-vertex result kept (a reduction instead): on large meshes the
+  // cost is mostly in touching fresh memory.
+  std::vector<Vec3> normal(size_t(nv), Vec3{0, 0, 0});
+  std::vector<int8_t> vertex_side(size_t(nv), 0);
   for (size_t i = 0; i < tris.corners.size(); ++i) {
     const std::array<int32_t, 3>& t = tris.corners[i];
     const P3 a = to_p3(mesh.positions[size_t(t[0])]), b = to_p3(mesh.positions[size_t(t[1])]),
@@ -351,46 +360,68 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const Triangl
     for (int k = 0; k < 3; ++k) {
       const P3 e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
       const double angle = std::atan2(std::sqrt(dot(cross(e1, e2), cross(e1, e2))), dot(e1, e2));
-      P3& s = normal[size_t(t[size_t(k)])];
-      s = {s.x + angle * n.x, s.y + angle * n.y, s.z + angle * n.z};
+      Vec3& s = normal[size_t(t[size_t(k)])];
+      s = s + Vec3{float(angle * n.x), float(angle * n.y), float(angle * n.z)};
       vertex_side[size_t(t[size_t(k)])] = inward[size_t(tris.face[i])];
     }
   }
-  std::vector<double> thickness(size_t(nv), INFINITY);
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nv, 1024), [&](const tbb::blocked_range<int32_t>& r) {
-    for (int32_t v = r.begin(); v < r.end(); ++v) {
-      const int32_t side = vertex_side[size_t(v)];
-      const P3 n = normal[size_t(v)];
-      const double length = std::sqrt(dot(n, n));
-      if (side == 0 || length == 0) continue;
-      const double scale = side / length;
-      const P3 origin = to_p3(mesh.positions[size_t(v)]);
-      const P3 direction{n.x * scale, n.y * scale, n.z * scale};
-      thickness[size_t(v)] = bvh.cast(origin, direction, [&](int32_t i, double t_max) {
-        const std::array<int32_t, 3>& t = tris.corners[size_t(i)];
-        if (t[0] == v || t[1] == v || t[2] == v) return t_max;
-        const P3 a = to_p3(mesh.positions[size_t(t[0])]);
-        const P3 e1 = to_p3(mesh.positions[size_t(t[1])]) - a, e2 = to_p3(mesh.positions[size_t(t[2])]) - a;
-        const P3 h = cross(direction, e2);
-        const double det = dot(e1, h);
-        if (det == 0) return t_max;
-        const double inv = 1 / det;
-        const P3 s = origin - a;
-        const double u = dot(s, h) * inv;
-        if (u < 0 || u > 1) return t_max;
-        const P3 q = cross(s, e1);
-        const double w = dot(direction, q) * inv;
-        if (w < 0 || u + w > 1) return t_max;
-        const double t_hit = dot(e2, q) * inv;
-        return t_hit > 0 && t_hit < t_max ? t_hit : t_max;
-      });
-    }
-  });
-  for (int32_t v = 0; v < nv; ++v)
-    if (thickness[size_t(v)] < report.min_thickness) {
-      report.min_thickness = thickness[size_t(v)];
-      report.thinnest_vertex = v;
-    }
+
+  const std::unique_ptr<RTCDeviceTy, EmbreeDevice> device(rtcNewDevice(nullptr));
+  if (!device) throw Error("printability: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  const std::unique_ptr<RTCSceneTy, EmbreeScene> scene(rtcNewScene(device.get()));
+  rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), size_t(nv)));
+  for (int32_t v = 0; v < nv; ++v) {
+    const Vec3 p = mesh.positions[size_t(v)];
+    vertices[3 * size_t(v)] = p.x;
+    vertices[3 * size_t(v) + 1] = p.y;
+    vertices[3 * size_t(v) + 2] = p.z;
+  }
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tris.corners.data(), 0,
+                             sizeof(std::array<int32_t, 3>), tris.corners.size());
+  rtcSetGeometryIntersectFilterFunction(geometry, skip_triangles_around_vertex);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene.get(), geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene.get());
+
+  // The least (thickness, vertex): the same whatever the split into tasks.
+  using Thinnest = std::pair<double, int32_t>;
+  const Thinnest thinnest = tbb::parallel_reduce(
+      tbb::blocked_range<int32_t>(0, nv, 1024), Thinnest{INFINITY, -1},
+      [&](const tbb::blocked_range<int32_t>& r, Thinnest best) {
+        VertexRayContext context;
+        rtcInitIntersectContext(&context.context);
+        context.corners = tris.corners.data();
+        for (int32_t v = r.begin(); v < r.end(); ++v) {
+          const int32_t side = vertex_side[size_t(v)];
+          const Vec3 n = normal[size_t(v)];
+          const double length = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
+          if (side == 0 || length == 0) continue;
+          const double scale = side / length;
+          const Vec3 origin = mesh.positions[size_t(v)];
+          context.vertex = v;
+          RTCRayHit rh{};
+          rh.ray.org_x = origin.x;
+          rh.ray.org_y = origin.y;
+          rh.ray.org_z = origin.z;
+          rh.ray.dir_x = float(n.x * scale);
+          rh.ray.dir_y = float(n.y * scale);
+          rh.ray.dir_z = float(n.z * scale);
+          rh.ray.tnear = 0;
+          rh.ray.tfar = INFINITY;
+          rh.ray.mask = 0xffffffffu;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rtcIntersect1(scene.get(), &context.context, &rh);
+          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) best = std::min(best, Thinnest{double(rh.ray.tfar), v});
+        }
+        return best;
+      },
+      [](const Thinnest& a, const Thinnest& b) { return std::min(a, b); });
+  report.min_thickness = thinnest.first;
+  report.thinnest_vertex = std::isfinite(thinnest.first) ? thinnest.second : -1;
 }
 
 } // namespace
@@ -433,19 +464,18 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
   report.degenerate_triangles = int32_t(std::count(skip.begin(), skip.end(), 1));
   if (!options.self_intersections && !options.thickness) return report;
 
-  const std::vector<TriangleBvh::Box> boxes = triangle_boxes(mesh, tris);
-  const TriangleBvh bvh(boxes);
   if (options.self_intersections) {
     report.self_intersections_checked = true;
-    report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh, boxes);
+    const TriangleBvh bvh(mesh.positions, tris.corners);
+    report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh);
     report.self_intersecting = report.first_intersection[0] >= 0;
   }
   if (options.thickness && report.boundary_edges == 0 && !report.components.empty()) {
     report.thickness_checked = true;
-    std::vector<int32_t> inward(size_t(mesh.num_faces()), 0);
+    std::vector<int8_t> inward(size_t(mesh.num_faces()), 0);
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
-      if (const int32_t k = component[size_t(f)]; k >= 0) inward[size_t(f)] = -sign(report.components[size_t(k)].volume);
-    min_thickness(mesh, tris, bvh, inward, report);
+      if (const int32_t k = component[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
+    min_thickness(mesh, tris, inward, report);
   }
   return report;
 }

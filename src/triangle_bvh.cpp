@@ -1,8 +1,12 @@
 #include "triangle_bvh.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include <atomic>
+#include <bit>
 
 namespace meander {
 namespace {
@@ -10,64 +14,142 @@ namespace {
 constexpr int32_t kLeafSize = 4;
 // Below this many boxes a subtree is built on the calling thread: spawning costs more.
 constexpr int32_t kParallelGrain = 1 << 12;
+constexpr int kMortonBits = 10; // per axis: 30 bits, leaving the low 32 of a key to the box
+
+// The bits of v (< 2^10) spread out to every third bit.
+uint32_t spread(uint32_t v) {
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+// Sorts by the high 32 bits, keeping the order of keys equal there (least significant
+// digit first, 8 bits a pass): linear time, and the keys are built in box order, so
+// boxes of one Morton cell stay in their input order.
+void radix_sort_high_half(std::vector<uint64_t>& keys) {
+  std::vector<uint64_t> buffer(keys.size());
+  for (int shift = 32; shift < 32 + 3 * kMortonBits; shift += 8) {
+    size_t count[257] = {};
+    for (const uint64_t k : keys) ++count[((k >> shift) & 0xff) + 1];
+    for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+    for (const uint64_t k : keys) buffer[count[(k >> shift) & 0xff]++] = k;
+    keys.swap(buffer);
+  }
+}
+
+// Where the range [begin, end) of sorted Morton codes splits: where the codes first
+// differ (Karras 2012, "Maximizing parallelism in the construction of BVHs"), so that each
+// half fills a cell of the octree-like grid; a range within one cell is halved in order.
+int32_t split(std::span<const uint32_t> codes, int32_t begin, int32_t end) {
+  const uint32_t first = codes[size_t(begin)], last = codes[size_t(end - 1)];
+  if (first == last) return begin + (end - begin) / 2;
+  const uint32_t bit = uint32_t(1) << (31 - std::countl_zero(first ^ last));
+  return int32_t(std::partition_point(codes.begin() + begin, codes.begin() + end,
+                                      [bit](uint32_t c) { return (c & bit) == 0; }) -
+                 codes.begin());
+}
+
+// The number of nodes the build makes: it sizes the node array exactly, which for
+// millions of boxes costs less than clearing the 2n nodes a bound would need.
+int32_t count_nodes(std::span<const uint32_t> codes, int32_t begin, int32_t end) {
+  if (end - begin <= kLeafSize) return 1;
+  const int32_t middle = split(codes, begin, end);
+  if (end - begin <= kParallelGrain) return 1 + count_nodes(codes, begin, middle) + count_nodes(codes, middle, end);
+  int32_t a = 0, b = 0;
+  tbb::parallel_invoke([&] { a = count_nodes(codes, begin, middle); }, [&] { b = count_nodes(codes, middle, end); });
+  return 1 + a + b;
+}
 
 struct Builder {
-  std::span<const TriangleBvh::Box> boxes;
-  std::vector<float> centre; // 3 per box, twice the centre (no halving needed to compare)
-  std::vector<int32_t>& items;
+  std::span<const TriangleBvh::Box> boxes; // in leaf order
+  std::span<const uint32_t> codes;         // Morton code of each box, in leaf order (sorted)
   std::vector<TriangleBvh::Node>& nodes;
   std::atomic<int32_t> next_node{1};
 
-  void build(int32_t node, int32_t begin, int32_t end) {
-    TriangleBvh::Box box, centres;
-    for (int32_t k = begin; k < end; ++k) {
-      const int32_t i = items[size_t(k)];
-      box.extend(boxes[size_t(i)]);
-      centres.extend(Vec3{centre[3 * size_t(i)], centre[3 * size_t(i) + 1], centre[3 * size_t(i) + 2]});
+  // Returns the node's box.
+  TriangleBvh::Box build(int32_t node, int32_t begin, int32_t end) {
+    TriangleBvh::Node& out = nodes[size_t(node)];
+    if (end - begin <= kLeafSize) {
+      TriangleBvh::Box box;
+      for (int32_t k = begin; k < end; ++k) box.extend(boxes[size_t(k)]);
+      out = {box, begin, end - begin};
+      return box;
     }
-    nodes[size_t(node)].box = box;
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis]) axis = k;
-    // A leaf when small, or when every centre is the same point (no split separates them).
-    if (end - begin <= kLeafSize || centres.hi[axis] == centres.lo[axis]) {
-      nodes[size_t(node)].first = begin;
-      nodes[size_t(node)].count = end - begin;
-      return;
-    }
-    const int32_t middle = begin + (end - begin) / 2;
-    std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end, [&](int32_t a, int32_t b) {
-      const float ca = centre[3 * size_t(a) + size_t(axis)], cb = centre[3 * size_t(b) + size_t(axis)];
-      return ca < cb || (ca == cb && a < b);
-    });
+    const int32_t middle = split(codes, begin, end);
     const int32_t left = next_node.fetch_add(2);
-    nodes[size_t(node)].first = left;
-    nodes[size_t(node)].count = 0;
+    TriangleBvh::Box a, b;
     if (end - begin > kParallelGrain)
-      tbb::parallel_invoke([&] { build(left, begin, middle); }, [&] { build(left + 1, middle, end); });
+      tbb::parallel_invoke([&] { a = build(left, begin, middle); }, [&] { b = build(left + 1, middle, end); });
     else {
-      build(left, begin, middle);
-      build(left + 1, middle, end);
+      a = build(left, begin, middle);
+      b = build(left + 1, middle, end);
     }
+    a.extend(b);
+    out = {a, left, 0};
+    return a;
   }
 };
 
 } // namespace
 
-TriangleBvh::TriangleBvh(std::span<const Box> boxes) {
-  const int32_t n = int32_t(boxes.size());
+TriangleBvh::TriangleBvh(std::span<const Vec3> positions, std::span<const std::array<int32_t, 3>> triangles) {
+  const int32_t n = int32_t(triangles.size());
   if (n == 0) return;
-  items_.resize(size_t(n));
-  std::vector<float> centre(3 * size_t(n));
-  for (int32_t i = 0; i < n; ++i) {
-    items_[size_t(i)] = i;
-    for (int k = 0; k < 3; ++k) centre[3 * size_t(i) + size_t(k)] = boxes[size_t(i)].lo[k] + boxes[size_t(i)].hi[k];
+  const auto box_of = [&](int32_t i) {
+    Box box;
+    for (const int32_t v : triangles[size_t(i)]) box.extend(positions[size_t(v)]);
+    return box;
+  };
+  // Twice the box centres (no halving needed), their box, and a cell of a 2^10 grid over it.
+  const auto centre = [](const Box& b, int k) { return b.lo[k] + b.hi[k]; };
+  const Box extent = tbb::parallel_reduce(
+      tbb::blocked_range<int32_t>(0, n, 1 << 14), Box{},
+      [&](const tbb::blocked_range<int32_t>& r, Box box) {
+        for (int32_t i = r.begin(); i < r.end(); ++i) {
+          const Box b = box_of(i);
+          box.extend(Vec3{centre(b, 0), centre(b, 1), centre(b, 2)});
+        }
+        return box;
+      },
+      [](Box a, const Box& b) {
+        a.extend(b);
+        return a;
+      });
+  float scale[3];
+  for (int k = 0; k < 3; ++k) {
+    const float size = extent.hi[k] - extent.lo[k];
+    scale[k] = size > 0 ? float((1 << kMortonBits) - 1) / size : 0;
   }
-  // A binary tree with leaves of at least one box has fewer than 2n nodes.
-  nodes_.resize(2 * size_t(n));
-  Builder builder{boxes, std::move(centre), items_, nodes_};
+  std::vector<uint64_t> keys(static_cast<size_t>(n));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<int32_t>& r) {
+    for (int32_t i = r.begin(); i < r.end(); ++i) {
+      const Box b = box_of(i);
+      uint32_t code = 0;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t cell =
+            std::min(uint32_t((centre(b, k) - extent.lo[k]) * scale[k]), uint32_t((1 << kMortonBits) - 1));
+        code |= spread(cell) << (2 - k);
+      }
+      keys[size_t(i)] = uint64_t(code) << 32 | uint32_t(i);
+    }
+  });
+  radix_sort_high_half(keys);
+
+  items_.resize(size_t(n));
+  item_boxes_.resize(size_t(n));
+  std::vector<uint32_t> codes(static_cast<size_t>(n));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<int32_t>& r) {
+    for (int32_t k = r.begin(); k < r.end(); ++k) {
+      items_[size_t(k)] = int32_t(keys[size_t(k)] & 0xffffffffu);
+      codes[size_t(k)] = uint32_t(keys[size_t(k)] >> 32);
+      item_boxes_[size_t(k)] = box_of(items_[size_t(k)]);
+    }
+  });
+  nodes_.resize(size_t(count_nodes(codes, 0, n)));
+  Builder builder{item_boxes_, codes, nodes_};
   builder.build(0, 0, n);
-  nodes_.resize(size_t(builder.next_node.load()));
 }
 
 } // namespace meander

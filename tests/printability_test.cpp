@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
@@ -147,6 +148,57 @@ TEST(Printability, TwoOverlappingCubesIntersect) {
   EXPECT_GE(r.first_intersection[1], 12);
   EXPECT_FALSE(r.printable());
   expect_agrees_with_cgal(m, "two overlapping cubes");
+}
+
+// Two spheres through each other, and a third through both: many intersecting pairs,
+// met by the parallel pair search in an order that depends on timing.
+PolygonMesh three_overlapping_spheres(int64_t faces) {
+  PolygonMesh m;
+  for (const Vec3 offset : {Vec3{0, 0, 0}, Vec3{0.7f, 0.1f, 0}, Vec3{0.3f, 0.6f, 0.2f}}) {
+    const PolygonMesh s = sphere(faces);
+    const int32_t base = m.num_vertices();
+    for (const Vec3 p : s.positions) m.positions.push_back(p + offset);
+    for (int32_t f = 0; f < s.num_faces(); ++f) {
+      std::vector<int32_t> v(s.face(f).begin(), s.face(f).end());
+      for (int32_t& i : v) i += base;
+      m.add_face(v);
+    }
+  }
+  return m;
+}
+
+// The first pair is the least intersecting pair, as a test of every pair on its own says.
+TEST(Printability, FirstIntersectionIsTheLeastIntersectingPair) {
+  const PolygonMesh m = three_overlapping_spheres(60);
+  const PrintabilityReport r = check_printability(m, {.thickness = false});
+  ASSERT_TRUE(r.self_intersecting);
+  std::array<int32_t, 2> least{-1, -1};
+  for (int32_t i = 0; i < m.num_faces() && least[0] < 0; ++i)
+    for (int32_t j = i + 1; j < m.num_faces() && least[0] < 0; ++j) {
+      PolygonMesh pair; // the two faces alone, with their own vertex numbers (shared vertices stay shared)
+      pair.positions = m.positions;
+      pair.add_face(m.face(i));
+      pair.add_face(m.face(j));
+      if (check_printability(pair, {.thickness = false}).self_intersecting) least = {i, j};
+    }
+  EXPECT_EQ(r.first_intersection, least);
+}
+
+// The reported pair and thinnest vertex are reductions over parallel work: the same on one
+// thread as on all.
+TEST(Printability, ReportDoesNotDependOnTheNumberOfThreads) {
+  const PolygonMesh m = three_overlapping_spheres(4000);
+  const PrintabilityReport all = check_printability(m);
+  PrintabilityReport one;
+  {
+    const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = check_printability(m);
+  }
+  EXPECT_TRUE(all.self_intersecting);
+  EXPECT_EQ(one.first_intersection, all.first_intersection);
+  EXPECT_EQ(one.thinnest_vertex, all.thinnest_vertex);
+  EXPECT_EQ(one.min_thickness, all.min_thickness);
+  EXPECT_EQ(printability_json(one), printability_json(all));
 }
 
 // Cubes side by side share a face's plane: touching faces of separate components count.
