@@ -27,12 +27,16 @@ demo: build
 	./$(BUILD)/meander generate pretzel --faces 6400 -o out/pretzel.obj
 	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.obj --triangles out/pretzel_cycle.obj --png out/pretzel.png --verbose
 	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.svg
+	./$(BUILD)/meander wire out/pretzel.obj -o out/pretzel_wire.stl --samples 2 --report out/pretzel_wire.json --png out/pretzel_wire.png --size 800x600
 	@echo "demo: outputs are in out/"
 
 test: build
-	@# The Khronos glTF validator (npm) checks the GLB files Meander writes; without npm that test skips.
-	@if command -v npm > /dev/null; then cd tests && npm ci --no-audit --no-fund --loglevel=error; \
-	else echo "make test: npm not found: the glTF validator test will skip"; fi
+	@# The Khronos glTF validator (npm) checks the GLB files Meander writes.
+	@if ! command -v npm > /dev/null; then \
+	  echo "make test: installing Debian's nodejs and npm for the glTF validator"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq nodejs npm; \
+	fi
+	cd tests && npm ci --no-audit --no-fund --loglevel=error
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
