@@ -87,6 +87,11 @@ bool segment_meets_triangle(P3 s, P3 t, P3 a, P3 b, P3 c) {
     return inside_triangle_2d(s, a, b, c, axis) || segments_meet_2d(s, t, a, b, axis) ||
            segments_meet_2d(s, t, b, c, axis) || segments_meet_2d(s, t, c, a, axis);
   }
+  // Touching the plane at one end only: the segment meets the triangle there or not at
+  // all. The line test below would decide it from the volumes of nearly flat tetrahedra,
+  // whose signs are rounding noise when the segment lies almost in the plane (smooth
+  // ribbons made of nearly coplanar quads); the projected test is well conditioned.
+  if (ds == 0 || dt == 0) return inside_triangle_2d(ds == 0 ? s : t, a, b, c, dominant_axis(a, b, c));
   // The segment reaches the plane; it does so inside the triangle iff the line st passes
   // on the same side of (or through) all three edges.
   const int o1 = orient3d(s, t, a, b), o2 = orient3d(s, t, b, c), o3 = orient3d(s, t, c, a);

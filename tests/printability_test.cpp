@@ -264,6 +264,21 @@ TEST(Printability, TrianglesTouchingAtASharedVertexOnlyDoNotIntersect) {
   expect_agrees_with_cgal(edge_on, "edge on the other's plane");
 }
 
+// Two quads of a smooth ribbon (Catmull-Clark, nearly coplanar): two vertices of one lie
+// in the other's plane up to rounding, where the signs of nearly flat tetrahedra are
+// noise. They do not meet (CGAL, exact); the test once said they did.
+TEST(Printability, NearlyCoplanarRibbonQuadsDoNotIntersect) {
+  PolygonMesh m;
+  m.positions = {{-0.890472651f, -0.403282136f, 0.110430859f}, {-0.890646279f, -0.401403576f, 0.11472176f},
+                 {-0.895462632f, -0.392471254f, 0.106268577f}, {-0.894566596f, -0.395689666f, 0.103080519f},
+                 {-0.890819848f, -0.399525017f, 0.119012661f}, {-0.890993416f, -0.397646457f, 0.123303562f},
+                 {-0.897254705f, -0.386034429f, 0.112644695f}, {-0.896358669f, -0.389252841f, 0.109456636f}};
+  m.add_face({0, 1, 2, 3});
+  m.add_face({4, 5, 6, 7});
+  EXPECT_FALSE(check_printability(m).self_intersecting);
+  expect_agrees_with_cgal(m, "nearly coplanar ribbon quads");
+}
+
 // Two closed tetrahedra joined at one vertex (an hourglass): not an intersection, but not
 // a manifold either, so not printable. CGAL's Surface_mesh cannot hold this vertex.
 TEST(Printability, TetrahedraSharingOnlyAVertex) {
