@@ -36,8 +36,25 @@ double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 int sign(double v) { return (v > 0) - (v < 0); }
 
-// +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to.
-int orient3d(P3 a, P3 b, P3 c, P3 d) { return sign(dot(cross(b - a, c - a), d - a)); }
+// +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to. The sign
+// in double is kept where it clears Shewchuk's error bound for this expression; below it
+// (d almost in the plane, as nearly coplanar faces of smooth ribbons are) the
+// determinant is recomputed in quadruple precision from the float coordinates, which
+// resolves it unless d is within ~1e-30 relative of the plane.
+int orient3d(P3 a, P3 b, P3 c, P3 d) {
+  const P3 ba = b - a, ca = c - a, da = d - a;
+  const double det = dot(cross(ba, ca), da);
+  const double permanent = (std::abs(ba.y * ca.z) + std::abs(ba.z * ca.y)) * std::abs(da.x) +
+                           (std::abs(ba.z * ca.x) + std::abs(ba.x * ca.z)) * std::abs(da.y) +
+                           (std::abs(ba.x * ca.y) + std::abs(ba.y * ca.x)) * std::abs(da.z);
+  if (std::abs(det) > 7.771561172376103e-16 * permanent) return sign(det);
+  using Q = __float128;
+  const Q bx = Q(b.x) - Q(a.x), by = Q(b.y) - Q(a.y), bz = Q(b.z) - Q(a.z);
+  const Q cx = Q(c.x) - Q(a.x), cy = Q(c.y) - Q(a.y), cz = Q(c.z) - Q(a.z);
+  const Q dx = Q(d.x) - Q(a.x), dy = Q(d.y) - Q(a.y), dz = Q(d.z) - Q(a.z);
+  const Q q = (by * cz - bz * cy) * dx + (bz * cx - bx * cz) * dy + (bx * cy - by * cx) * dz;
+  return (q > 0) - (q < 0);
+}
 
 // The axis along which the normal of (a, b, c) is largest: dropping it projects the
 // triangle's plane onto a coordinate plane without collapsing it.
