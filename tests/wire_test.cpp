@@ -175,6 +175,28 @@ TEST(Wire, AutoRadiusIsTheLargestWithoutSelfIntersection) {
   }
 }
 
+// The analytic bound on plain polylines: a unit circle is limited by its curvature (the
+// inside of the tube folds at radius 1), and a second circle 0.5 above it by their
+// distance (the tubes touch at 0.25).
+TEST(Wire, MaxRadiusOfCircles) {
+  const int n = 400;
+  Polylines circles;
+  for (float z : {0.0f, 0.5f}) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      circles.points.push_back({float(std::cos(a)), float(std::sin(a)), z});
+    }
+    circles.start.push_back(int32_t(circles.points.size()));
+    if (z == 0) {
+      Polylines one = circles;
+      EXPECT_NEAR(max_wire_radius(one, n), 1.0, 1e-3);
+    }
+  }
+  EXPECT_NEAR(max_wire_radius(circles, n), 0.25, 1e-3);
+  // The bound never exceeds two control-polygon segments (here 1 sample per segment).
+  EXPECT_LE(max_wire_radius(circles, 1), 2 * 2 * std::numbers::pi / n + 1e-9);
+}
+
 // Remark 1 of Section 4: with s = t = 0 the trapezoid degenerates to the control point
 // (2 apex + p + n) / 4.
 TEST(Wire, ZeroSizedTrapezoidIsTheControlPoint) {
