@@ -82,6 +82,22 @@ TEST_P(CliWire, RibbonsAreBands) {
 INSTANTIATE_TEST_SUITE_P(RealMeshes, CliWire, ::testing::ValuesIn(wire_meshes),
                          [](const auto& info) { return test_name(info.param); });
 
+// Section 4.1: with s and t near 1 the variable ribbons cover the surface densely
+// without running into each other (on meshes without long thin faces).
+TEST(CliWireOutput, DenseRibbonsDoNotSelfIntersect) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  for (const char* mesh : {"sphere.obj", "eight.off"}) {
+    const CommandResult r = run_cli({"wire", (shared_meshes() / mesh).string(), "-o", (dir / "ribbon.ply").string(), "--method",
+                                     "variable", "--shape", "ribbon", "--s", "0.95", "--t", "0.95", "--report", (dir / "r.json").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_FALSE(nlohmann::json::parse(read_file(dir / "r.json"))["self_intersecting"].get<bool>()) << mesh;
+    const CgalVerdict cgal = cgal_judge(read_mesh(dir / "ribbon.ply"));
+    ASSERT_TRUE(cgal.loaded) << mesh;
+    EXPECT_FALSE(cgal.self_intersecting) << mesh;
+  }
+}
+
 TEST(CliWireOutput, EveryFormatIsWritten) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto dir = output_dir();
