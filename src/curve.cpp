@@ -34,15 +34,16 @@ Smoothing parse_smoothing(std::string_view name) {
   throw UsageError("unknown smoothing '" + std::string(name) + "' (expected bspline, catmull-rom or none)");
 }
 
+std::array<float, 4> bspline_weights(float u) {
+  const float u2 = u * u, u3 = u2 * u;
+  return {(1 - u) * (1 - u) * (1 - u) / 6, (3 * u3 - 6 * u2 + 4) / 6, (-3 * u3 + 3 * u2 + 3 * u + 1) / 6, u3 / 6};
+}
+
 namespace {
 
-// Uniform cubic B-spline basis at u in [0,1), for the segment between p1 and p2.
+// Uniform cubic B-spline at u in [0,1), for the segment between p1 and p2.
 Vec3 bspline(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, float u) {
-  const float u2 = u * u, u3 = u2 * u;
-  const float b0 = (1 - u) * (1 - u) * (1 - u) / 6;
-  const float b1 = (3 * u3 - 6 * u2 + 4) / 6;
-  const float b2 = (-3 * u3 + 3 * u2 + 3 * u + 1) / 6;
-  const float b3 = u3 / 6;
+  const auto [b0, b1, b2, b3] = bspline_weights(u);
   return p0 * b0 + p1 * b1 + p2 * b2 + p3 * b3;
 }
 

@@ -109,12 +109,6 @@ Vec3 section_normal(Vec3 a, Vec3 b, Vec3 c) {
   return normalized(in + out);
 }
 
-// Uniform cubic B-spline weights at u, as curve.cpp samples the curve.
-std::array<float, 4> bspline_weights(float u) {
-  const float u2 = u * u, u3 = u2 * u;
-  return {(1 - u) * (1 - u) * (1 - u) / 6, (3 * u3 - 6 * u2 + 4) / 6, (-3 * u3 + 3 * u2 + 3 * u + 1) / 6, u3 / 6};
-}
-
 // Quads between consecutive rings of `width` vertices (ring i starts at first + i *
 // width), closing the last ring onto the first with its vertex j joined to the first
 // ring's vertex (j + shift) mod width. Open rings (a ribbon's rungs) get no quad from
@@ -133,10 +127,6 @@ void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t widt
     }
   }
 }
-
-} // namespace
-
-namespace {
 
 // The swept section's frame at every point of the smooth curve: computed once, so that
 // --radius auto can try several radii on it.
@@ -413,7 +403,8 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
 double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
   const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
   const Sweep sweep = sweep_frames(quads, cycle, options.curve);
-  constexpr double step = 1.1, steps = 3, reach = 1.35; // reach >= step^steps
+  constexpr double step = 1.1, reach = 1.35; // reach >= step^steps
+  constexpr int steps = 3;
   const Clearance clearance = tube_clearance(sweep.centre, k, reach);
   double radius = clearance.radius;
   if (!(radius > 0)) return 0;

@@ -40,7 +40,9 @@ void expect_tori(const PolygonMesh& wire, int32_t cycles, bool volume_positive =
   ASSERT_EQ(int32_t(r.components.size()), cycles);
   for (const SolidComponent& c : r.components) {
     EXPECT_EQ(c.euler_characteristic, 0);
-    if (volume_positive) EXPECT_GT(c.volume, 0);
+    if (volume_positive) {
+      EXPECT_GT(c.volume, 0);
+    }
   }
 }
 
@@ -87,7 +89,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, WireOnShapes,
                                            Shape{"torus", [] { return torus(400); }},
                                            Shape{"pretzel", [] { return genus_surface(2, 600); }},
                                            Shape{"grid", [] { return grid(200); }}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const ::testing::TestParamInfo<Shape>& shape) { return std::string(shape.param.name); });
 
 // Faces of the ribbon point the way the surface's faces do: on a sphere with outward
 // faces, every ribbon face's normal points away from the centre.
@@ -99,7 +101,9 @@ TEST(Wire, RibbonFacesPointOutOfTheSurface) {
     const Vec3 a = ribbon.positions[size_t(v[0])], b = ribbon.positions[size_t(v[1])], c = ribbon.positions[size_t(v[2])],
                d = ribbon.positions[size_t(v[3])];
     const Vec3 n = cross(c - a, d - b);
-    if (norm(n) > 1e-9) EXPECT_GT(dot(n, a + c), 0) << "face " << f;
+    if (norm(n) > 1e-9) {
+      EXPECT_GT(dot(n, a + c), 0) << "face " << f;
+    }
   }
 }
 

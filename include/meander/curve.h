@@ -5,6 +5,7 @@
 #include "meander/hamiltonian.h"
 #include "meander/mesh.h"
 
+#include <array>
 #include <string_view>
 
 namespace meander {
@@ -21,6 +22,11 @@ enum class Smoothing {
 
 // Parses "bspline" | "catmull-rom" | "none"; throws UsageError otherwise.
 Smoothing parse_smoothing(std::string_view name);
+
+// The uniform cubic B-spline basis at u in [0, 1): the weights of control points i-1,
+// i, i+1, i+2 for the point of segment i that smooth_curves samples at u (wires blend
+// surface normals with the same weights).
+std::array<float, 4> bspline_weights(float u);
 
 struct CurveOptions {
   Smoothing smoothing = Smoothing::bspline;
