@@ -18,5 +18,6 @@ Command add_info_command(CLI::App& parent);
 Command add_generate_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
 Command add_wire_command(CLI::App& parent);
+Command add_serve_command(CLI::App& parent);
 
 } // namespace meander::cli

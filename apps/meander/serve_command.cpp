@@ -1,0 +1,64 @@
+#include "commands.h"
+
+#include "meander/studio_server.h"
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <thread>
+
+namespace meander::cli {
+
+namespace {
+
+struct ServeArgs {
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  size_t max_upload = size_t(256) << 20;
+  bool open = false;
+};
+
+void run_serve(const ServeArgs& a) {
+  StudioServer server({.host = a.host, .port = a.port, .max_upload = a.max_upload, .page = MEANDER_STUDIO_PAGE});
+  const int port = server.bind();
+  const std::string url = "http://" + (a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host) + ":" +
+                          std::to_string(port) + "/";
+  std::printf("Meander studio: %s\n", url.c_str());
+  std::fflush(stdout);
+  if (a.open) {
+    // The URL is ours (host and number), so no shell quoting question arises.
+    const std::string command = "xdg-open '" + url + "' > /dev/null 2>&1 &";
+    if (std::system(command.c_str()) != 0) std::fprintf(stderr, "meander serve: could not open a browser; visit %s\n", url.c_str());
+  }
+  // Ctrl-C and SIGTERM stop the server cleanly, so its scratch folder is removed.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&stop_signals, &signal);
+    server.stop();
+  });
+  server.run();
+  // run() also ends if listening fails; wake the waiter so it can be joined.
+  pthread_kill(waiter.native_handle(), SIGTERM);
+  waiter.join();
+}
+
+} // namespace
+
+Command add_serve_command(CLI::App& parent) {
+  auto args = std::make_shared<ServeArgs>();
+  CLI::App* app = parent.add_subcommand("serve", "Start the studio: a local web page to make curves and wires interactively");
+  app->add_option("--port", args->port, "TCP port (0: any free port)")->check(CLI::Range(0, 65535))->capture_default_str();
+  app->add_option("--host", args->host, "address to listen on (127.0.0.1: this machine only)")->capture_default_str();
+  app->add_option("--max-upload", args->max_upload, "largest request body in bytes (bigger uploads get HTTP 413)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_flag("--open", args->open, "open the page in the default browser");
+  return {app, [args] { run_serve(*args); }};
+}
+
+} // namespace meander::cli

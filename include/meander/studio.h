@@ -1,0 +1,156 @@
+// The studio's work, apart from HTTP (studio_server.h serves it): what a page or a script
+// asks for, checked; sessions holding an uploaded surface and its latest result; and
+// the result made by the same library calls as the CLI's `curve` and `wire` and turned
+// into the files the page shows and downloads. The JSON API is documented in
+// docs/studio.md.
+#pragma once
+
+#include "meander/check.h"
+#include "meander/curve.h"
+#include "meander/pipeline.h"
+#include "meander/printability.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace meander {
+
+// What the studio makes, as the page's mode menu lists them. The wire modes are
+// `meander wire --method constant|variable --shape wire|ribbon`.
+enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, variable_ribbon };
+
+// Parses "curve" | "constant-wire" | "constant-ribbon" | "variable-wire" |
+// "variable-ribbon"; throws UsageError otherwise.
+StudioMode parse_studio_mode(std::string_view name);
+
+// Every parameter of the CLI's curve and wire commands, with the CLI's defaults and ranges.
+struct StudioParams {
+  StudioMode mode = StudioMode::curve;
+  CurveJob job{.curve = {.samples = 4}};
+  double radius = 0; // constant modes: > 0, or 0 for `--radius auto`
+  int sides = 8;     // constant wire: 3..64
+  double s = 0.6, t = 0.6;
+  double thickness = 0; // variable wire, >= 0 (0: half the local ribbon width)
+  int levels = 2;       // variable modes: 0..6
+};
+
+struct MakeRequest {
+  std::string session;
+  StudioParams params;
+};
+
+// Parses the body of POST /api/make: a JSON object with "session" (required) and any
+// of "mode", "quad", "tree", "seed", "smooth", "samples", "radius" (number or "auto"),
+// "sides", "s", "t", "thickness", "levels"; absent keys keep their defaults. Throws
+// UsageError naming the key and what it expects ("s: expected a number in [0, 1], got
+// 1.5", "colour: unknown parameter") for anything else: malformed JSON, a value of the
+// wrong type or out of the CLI's range, an unknown key. Never throws anything else on
+// any bytes (the fuzz target for the API's parameters).
+MakeRequest parse_make_request(std::string_view body);
+
+// A surface ready for the pipeline: read, repaired, its connectivity kept.
+struct StudioSurface {
+  std::string name; // the file name messages use
+  RepairResult repaired;
+  int32_t input_vertices = 0, input_faces = 0; // as read, before repair
+};
+
+// Reads an uploaded file from memory, its format from the extension of `filename`
+// (only the last path component is used, as the name in messages; nothing is read from
+// or written to disk), and repairs it as `meander curve` does. OBJ, PLY, STL, OFF, GLB
+// and glTF with embedded data; a glTF that refers to files outside itself is refused.
+// Throws what read_mesh and repair throw (the CLI's messages), UsageError for another
+// extension.
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes);
+
+// The bundled demo model: `meander generate pretzel --faces 1600`, light enough that
+// every mode updates within about a second at the CLI's defaults.
+StudioSurface demo_surface();
+
+struct StudioResult {
+  StudioParams params;
+  CurveResult curve;     // quads, cycle and smooth curve (every mode)
+  double curve_length = 0;
+  PolygonMesh mesh;      // the wire or ribbon; empty in curve mode
+  double radius = 0;     // constant modes: the radius used (auto resolved)
+  PrintabilityReport report; // of `mesh` (self-intersections, no thickness); unset in curve mode
+  int64_t triangles = 0; // of the cycle (curve mode) or the mesh, after fanning
+  double seconds = 0;    // making it, report included
+};
+
+// Runs the job on a copy of the surface: make_curve, then constant_wire (auto_wire_radius
+// when radius is 0) or variable_wire, then check_printability without the thickness rays
+// (the live view's stats). Throws what those throw; TopologyError when no radius avoids
+// a self-intersection, as `meander wire`.
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params);
+
+// The stats beside the view as JSON: mode, triangles, curves, curve_length, seconds,
+// and for meshes vertices, faces, watertight, self_intersecting, volume, radius.
+std::string studio_stats_json(const StudioResult& result);
+
+// The files a result can be fetched as (GET /api/result/SESSION/NAME). The names are a
+// fixed table: nothing a client sends is ever used as a path.
+enum class StudioFile {
+  surface, // the surface as the view draws it (binary, see studio_view_bytes)
+  view,    // the result as the view draws it
+  stl, threemf, glb, obj_zip, svg, png,
+};
+
+// "surface.bin", "view.bin", "result.stl", "result.3mf", "result.glb", "result.zip",
+// "curve.svg", "render.png"; throws UsageError for any other name.
+StudioFile parse_studio_file(std::string_view name);
+
+// Geometry for the page's three.js view, little-endian: "MNDR", uint32 vertex count V,
+// triangle count T, segment count S; then V*3 float32 positions, T*3 uint32 vertex
+// indices (polygons fanned), S*2 uint32 indices of line segments (closed curves).
+std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves);
+
+struct StudioDownload {
+  std::string bytes;
+  std::string content_type;
+  std::string filename; // offered to the browser (Content-Disposition)
+};
+
+// One file of the result. Files made by the library's writers go through `scratch`, a
+// private folder the caller owns, under names of the caller's choosing (`stem`) that no
+// client picks, and are removed once read. The zip holds OBJ + MTL (+ PNG textures).
+// Throws UsageError for a mesh file in curve mode.
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
+                               const std::filesystem::path& scratch, const std::string& stem);
+
+// Sessions: each holds a surface and its latest result, under a random 128-bit id
+// (32 hex digits). Safe to call from many threads; work on one session is serialised
+// by its own lock, different sessions run in parallel. The oldest sessions are dropped
+// beyond `capacity`.
+class StudioSessions {
+public:
+  struct Session {
+    std::mutex lock; // held while making or reading `result`
+    std::shared_ptr<const StudioSurface> surface;
+    std::shared_ptr<const StudioResult> result; // null until the first make
+  };
+
+  explicit StudioSessions(size_t capacity = 32) : capacity_(capacity) {}
+  // Stores the surface in a new session; returns its id.
+  std::string add(StudioSurface surface);
+  // The session, or null for an unknown or dropped id (any string is safe to pass).
+  std::shared_ptr<Session> find(std::string_view id) const;
+
+private:
+  mutable std::mutex lock_;
+  size_t capacity_;
+  uint64_t clock_ = 0;
+  struct Entry {
+    std::shared_ptr<Session> session;
+    uint64_t created;
+  };
+  std::unordered_map<std::string, Entry> sessions_;
+};
+
+} // namespace meander

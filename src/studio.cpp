@@ -1,0 +1,415 @@
+#include "meander/studio.h"
+
+#include "io/binary.h"
+#include "io/zip.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/render.h"
+#include "meander/shapes.h"
+#include "meander/wire.h"
+
+#include "io/image_codec.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+
+namespace meander {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// A make request is a few hundred bytes; anything far larger is not one.
+constexpr size_t max_request_bytes = 64 * 1024;
+
+std::string describe(const json& value) {
+  std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  return text.size() > 40 ? text.substr(0, 40) + "..." : text;
+}
+
+double number_in(const json& value, const char* key, double lo, double hi) {
+  if (!value.is_number() || !std::isfinite(value.get<double>()) || value.get<double>() < lo || value.get<double>() > hi) {
+    std::ostringstream range;
+    range << (std::isinf(hi) ? "a number >= " : "a number in [") << lo;
+    if (!std::isinf(hi)) range << ", " << hi << "]";
+    throw UsageError(std::string(key) + ": expected " + range.str() + ", got " + describe(value));
+  }
+  return value.get<double>();
+}
+
+int integer_in(const json& value, const char* key, int lo, int hi) {
+  if (!value.is_number_integer() || value.get<int64_t>() < lo || value.get<int64_t>() > hi)
+    throw UsageError(std::string(key) + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], got " + describe(value));
+  return int(value.get<int64_t>());
+}
+
+std::string text(const json& value, const char* key) {
+  if (!value.is_string()) throw UsageError(std::string(key) + ": expected a string, got " + describe(value));
+  return value.get<std::string>();
+}
+
+// The named parser's refusal, prefixed with the key it came from.
+template <class Parse> auto named(const char* key, Parse parse) {
+  try {
+    return parse();
+  } catch (const UsageError& e) {
+    throw UsageError(std::string(key) + ": " + e.what());
+  }
+}
+
+// tinygltf resolves a glTF's buffer and image URIs as files beside it; an upload has no
+// folder of its own, so any URI other than data: would read the server's files.
+void refuse_external_uris(std::string_view bytes, const std::string& name) {
+  std::string_view json_text = bytes;
+  if (bytes.starts_with("glTF")) {
+    if (bytes.size() < 20) throw InputError(name + ": GLB header: file too short (" + std::to_string(bytes.size()) + " bytes)");
+    const uint32_t length = io::load_little_endian<uint32_t>(bytes.data() + 12);
+    if (bytes.substr(16, 4) != "JSON" || length > bytes.size() - 20)
+      throw InputError(name + ": GLB: the first chunk is not a JSON chunk within the file");
+    json_text = bytes.substr(20, length);
+  }
+  const json document = json::parse(json_text, nullptr, false);
+  if (document.is_discarded() || !document.is_object()) throw InputError(name + ": glTF JSON does not parse as an object");
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = document.find(kind);
+    if (list == document.end() || !list->is_array()) continue;
+    for (size_t i = 0; i < list->size(); ++i) {
+      const json& item = (*list)[i];
+      if (!item.is_object() || !item.contains("uri")) continue;
+      const json& uri = item["uri"];
+      if (!uri.is_string() || !uri.get<std::string>().starts_with("data:"))
+        throw InputError(name + ": " + std::string(kind).substr(0, std::strlen(kind) - 1) + " " + std::to_string(i) +
+                         " refers to the file " + describe(uri) +
+                         ": an uploaded glTF must embed its data (GLB or data: URIs)");
+    }
+  }
+}
+
+std::string sanitized(std::string_view text) {
+  std::string out;
+  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
+  return out.empty() ? "meander" : out;
+}
+
+std::string mode_name(StudioMode mode) {
+  switch (mode) {
+  case StudioMode::curve: return "curve";
+  case StudioMode::constant_wire: return "constant-wire";
+  case StudioMode::constant_ribbon: return "constant-ribbon";
+  case StudioMode::variable_wire: return "variable-wire";
+  case StudioMode::variable_ribbon: return "variable-ribbon";
+  }
+  return "curve";
+}
+
+std::string read_and_remove(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError(path.string() + ": cannot open the file just written");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  fs::remove(path);
+  return bytes;
+}
+
+double total_length(const Polylines& curves) {
+  double length = 0;
+  for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
+    const int32_t begin = curves.start[k], end = curves.start[k + 1];
+    for (int32_t i = begin; i + 1 < end; ++i) length += norm(curves.points[i + 1] - curves.points[i]);
+    const bool open = !curves.open.empty() && curves.open[k];
+    if (!open && end - begin > 1) length += norm(curves.points[begin] - curves.points[end - 1]);
+  }
+  return length;
+}
+
+bool is_wire(StudioMode mode) { return mode == StudioMode::constant_wire || mode == StudioMode::variable_wire; }
+
+} // namespace
+
+StudioMode parse_studio_mode(std::string_view name) {
+  for (StudioMode mode : {StudioMode::curve, StudioMode::constant_wire, StudioMode::constant_ribbon,
+                          StudioMode::variable_wire, StudioMode::variable_ribbon})
+    if (name == mode_name(mode)) return mode;
+  throw UsageError("unknown mode '" + std::string(name.substr(0, 40)) +
+                   "' (expected curve, constant-wire, constant-ribbon, variable-wire or variable-ribbon)");
+}
+
+MakeRequest parse_make_request(std::string_view body) {
+  if (body.size() > max_request_bytes)
+    throw UsageError("request body of " + std::to_string(body.size()) + " bytes: a make request is at most " +
+                     std::to_string(max_request_bytes));
+  const json document = json::parse(body, nullptr, false);
+  if (document.is_discarded()) throw UsageError("request body is not valid JSON");
+  if (!document.is_object()) throw UsageError("request body: expected a JSON object, got " + describe(document));
+  MakeRequest request;
+  StudioParams& p = request.params;
+  bool has_session = false;
+  for (const auto& [key, value] : document.items()) {
+    if (key == "session") {
+      request.session = text(value, "session");
+      has_session = true;
+    } else if (key == "mode") {
+      p.mode = named("mode", [&] { return parse_studio_mode(text(value, "mode")); });
+    } else if (key == "quad") {
+      p.job.quadrangulation = named("quad", [&] { return parse_quadrangulation(text(value, "quad")); });
+    } else if (key == "tree") {
+      p.job.cycle.tree = named("tree", [&] { return parse_tree_strategy(text(value, "tree")); });
+    } else if (key == "smooth") {
+      p.job.curve.smoothing = named("smooth", [&] { return parse_smoothing(text(value, "smooth")); });
+    } else if (key == "seed") {
+      if (!value.is_number_unsigned())
+        throw UsageError("seed: expected a non-negative integer, got " + describe(value));
+      p.job.cycle.seed = value.get<uint64_t>();
+    } else if (key == "samples") {
+      p.job.curve.samples = integer_in(value, "samples", 1, 1000);
+    } else if (key == "radius") {
+      if (value.is_string() && value.get<std::string>() == "auto")
+        p.radius = 0;
+      else if (value.is_number() && value.get<double>() > 0 && std::isfinite(value.get<double>()))
+        p.radius = value.get<double>();
+      else
+        throw UsageError("radius: expected a positive number or \"auto\", got " + describe(value));
+    } else if (key == "sides") {
+      p.sides = integer_in(value, "sides", 3, 64);
+    } else if (key == "s") {
+      p.s = number_in(value, "s", 0, 1);
+    } else if (key == "t") {
+      p.t = number_in(value, "t", 0, 1);
+    } else if (key == "thickness") {
+      p.thickness = number_in(value, "thickness", 0, INFINITY);
+    } else if (key == "levels") {
+      p.levels = integer_in(value, "levels", 0, 6);
+    } else {
+      throw UsageError(describe(json(key)) + ": unknown parameter");
+    }
+  }
+  if (!has_session) throw UsageError("session: missing (upload a mesh first: POST /api/mesh)");
+  return request;
+}
+
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes) {
+  // Only the last component: a client's "../../x.obj" is a name for messages, not a path.
+  const size_t slash = filename.find_last_of("/\\");
+  std::string name(slash == std::string_view::npos ? filename : filename.substr(slash + 1));
+  if (name.empty()) name = "upload";
+  const MeshFormat format = mesh_format_from_path(name);
+  if (format == MeshFormat::gltf) refuse_external_uris(bytes, name);
+  PolygonMesh mesh = read_mesh(bytes, format, name);
+  StudioSurface surface{.name = name, .input_vertices = mesh.num_vertices(), .input_faces = mesh.num_faces()};
+  surface.repaired = repair(std::move(mesh), name);
+  return surface;
+}
+
+StudioSurface demo_surface() {
+  PolygonMesh mesh = make_shape("pretzel", 1600);
+  StudioSurface surface{.name = "pretzel.obj", .input_vertices = mesh.num_vertices(), .input_faces = mesh.num_faces()};
+  surface.repaired = repair(std::move(mesh), surface.name);
+  return surface;
+}
+
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params) {
+  const auto start = std::chrono::steady_clock::now();
+  StudioResult result{.params = params};
+  result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, params.job);
+  result.curve_length = total_length(result.curve.curves);
+  const StudioMode mode = params.mode;
+  const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
+  if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
+    ConstantWireOptions options{.shape = shape, .radius = params.radius, .sides = params.sides, .curve = params.job.curve};
+    if (options.radius == 0) {
+      options.radius = auto_wire_radius(result.curve.quads, result.curve.cycle, options);
+      if (!(options.radius > 0))
+        throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
+    }
+    result.radius = options.radius;
+    result.mesh = constant_wire(result.curve.quads, result.curve.cycle, options);
+  } else if (mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon) {
+    result.mesh = variable_wire(result.curve.quads, result.curve.cycle,
+                                {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,
+                                 .levels = params.levels});
+  }
+  if (mode == StudioMode::curve) {
+    result.triangles = int64_t(result.curve.cycle.order.size());
+  } else {
+    result.report = check_printability(result.mesh, {.thickness = false});
+    result.triangles = result.report.triangles;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::string studio_stats_json(const StudioResult& result) {
+  const Polylines& curves = result.curve.curves;
+  json stats = {{"mode", mode_name(result.params.mode)},
+                {"triangles", result.triangles},
+                {"curves", curves.start.size() - 1},
+                {"curve_points", curves.points.size()},
+                {"curve_length", result.curve_length},
+                {"seconds", result.seconds}};
+  if (result.params.mode != StudioMode::curve) {
+    const PrintabilityReport& r = result.report;
+    stats["vertices"] = r.vertices;
+    stats["faces"] = r.faces;
+    stats["watertight"] = r.watertight;
+    stats["self_intersecting"] = r.self_intersecting;
+    stats["volume"] = r.volume;
+    stats["printable"] = r.printable();
+    if (result.radius > 0) stats["radius"] = result.radius;
+    else stats["radius"] = nullptr;
+  }
+  return stats.dump();
+}
+
+StudioFile parse_studio_file(std::string_view name) {
+  static constexpr std::pair<std::string_view, StudioFile> table[] = {
+      {"surface.bin", StudioFile::surface}, {"view.bin", StudioFile::view},      {"result.stl", StudioFile::stl},
+      {"result.3mf", StudioFile::threemf},  {"result.glb", StudioFile::glb},     {"result.zip", StudioFile::obj_zip},
+      {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png}};
+  for (const auto& [file_name, file] : table)
+    if (name == file_name) return file;
+  throw UsageError("no result file of that name (expected surface.bin, view.bin, result.stl, result.3mf, result.glb, "
+                   "result.zip, curve.svg or render.png)");
+}
+
+std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves) {
+  int64_t triangles = 0, segments = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += std::max(0, mesh.face_size(f) - 2);
+  for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
+    const int32_t n = curves.start[k + 1] - curves.start[k];
+    const bool open = !curves.open.empty() && curves.open[k];
+    segments += n < 2 ? 0 : (open ? n - 1 : n);
+  }
+  const int64_t vertices = int64_t(mesh.positions.size() + curves.points.size());
+  if (vertices > UINT32_MAX || triangles > UINT32_MAX || segments > UINT32_MAX)
+    throw UsageError("result too large for the view (over 2^32 elements)");
+  std::string out;
+  out.reserve(16 + size_t(vertices) * 12 + size_t(triangles) * 12 + size_t(segments) * 8);
+  auto put = [&out](auto value) {
+    char bytes[sizeof(value)];
+    io::store_little_endian(bytes, value);
+    out.append(bytes, sizeof(value));
+  };
+  out += "MNDR";
+  put(uint32_t(vertices));
+  put(uint32_t(triangles));
+  put(uint32_t(segments));
+  for (const Vec3& p : mesh.positions) put(p.x), put(p.y), put(p.z);
+  for (const Vec3& p : curves.points) put(p.x), put(p.y), put(p.z);
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto face = mesh.face(f);
+    for (size_t i = 1; i + 1 < face.size(); ++i) put(uint32_t(face[0])), put(uint32_t(face[i])), put(uint32_t(face[i + 1]));
+  }
+  const uint32_t base = uint32_t(mesh.positions.size());
+  for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
+    const int32_t begin = curves.start[k], end = curves.start[k + 1];
+    if (end - begin < 2) continue;
+    for (int32_t i = begin; i + 1 < end; ++i) put(base + uint32_t(i)), put(base + uint32_t(i + 1));
+    if (curves.open.empty() || !curves.open[k]) put(base + uint32_t(end - 1)), put(base + uint32_t(begin));
+  }
+  return out;
+}
+
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
+                               const fs::path& scratch, const std::string& stem) {
+  const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode);
+  const bool curve_mode = result.params.mode == StudioMode::curve;
+  auto written_mesh = [&](const char* extension, const char* type) {
+    if (curve_mode)
+      throw UsageError(std::string("curve mode makes no mesh to save as ") + extension +
+                       ": choose a wire or ribbon mode (the curve downloads as curve.svg or result.zip)");
+    const fs::path path = scratch / (stem + extension);
+    write_mesh(result.mesh, path);
+    return StudioDownload{read_and_remove(path), type, base + extension};
+  };
+  switch (file) {
+  case StudioFile::surface:
+    return {studio_view_bytes(surface.repaired.mesh, {}), "application/octet-stream", "surface.bin"};
+  case StudioFile::view:
+    return {curve_mode ? studio_view_bytes({}, result.curve.curves) : studio_view_bytes(result.mesh, {}),
+            "application/octet-stream", "view.bin"};
+  case StudioFile::stl: return written_mesh(".stl", "model/stl");
+  case StudioFile::threemf: return written_mesh(".3mf", "model/3mf");
+  case StudioFile::glb: return written_mesh(".glb", "model/gltf-binary");
+  case StudioFile::obj_zip: {
+    // The writers name the MTL and textures after the OBJ, so each zip gets a folder.
+    const fs::path folder = scratch / stem;
+    fs::create_directory(folder);
+    std::vector<io::ZipEntry> entries;
+    try {
+      if (curve_mode) {
+        write_polylines(result.curve.curves, folder / (base + ".obj"));
+      } else {
+        Appearance appearance{.materials = {{.name = "meander", .base_color = {0.72f, 0.45f, 0.2f}}}};
+        write_textured_mesh({.mesh = result.mesh, .appearance = std::move(appearance)}, folder / (base + ".obj"));
+      }
+      std::vector<fs::path> paths(fs::directory_iterator(folder), fs::directory_iterator{});
+      std::sort(paths.begin(), paths.end());
+      for (const fs::path& path : paths) entries.push_back({path.filename().string(), read_and_remove(path)});
+    } catch (...) {
+      fs::remove_all(folder);
+      throw;
+    }
+    fs::remove_all(folder);
+    return {io::zip_stored(entries), "application/zip", base + ".zip"};
+  }
+  case StudioFile::svg: {
+    const fs::path path = scratch / (stem + ".svg");
+    write_polylines(result.curve.curves, path);
+    return {read_and_remove(path), "image/svg+xml", base + ".svg"};
+  }
+  case StudioFile::png: {
+    // As `meander curve --png` and `meander wire --png`: the surface hides the back of
+    // the curve and of a wire; a ribbon lies in it and is drawn alone.
+    Scene scene;
+    const StudioMode mode = result.params.mode;
+    if (!curve_mode) scene.meshes.push_back({.mesh = result.mesh, .color = {0.72f, 0.45f, 0.2f}});
+    else scene.curves.push_back({.curves = result.curve.curves});
+    if (curve_mode || is_wire(mode))
+      scene.meshes.push_back({.mesh = cycle_triangles(result.curve.quads, result.curve.cycle),
+                              .color = {0.82f, 0.82f, 0.82f},
+                              .style = curve_mode ? MeshStyle::hidden : MeshStyle::faint});
+    const Image image = render(scene, {.width = 1200, .height = 900, .samples = 4});
+    return {io::encode_png(image.rgba.data(), image.width, image.height, image.has_alpha ? 4 : 3, base + ".png"),
+            "image/png", base + ".png"};
+  }
+  }
+  throw UsageError("unknown result file");
+}
+
+std::string StudioSessions::add(StudioSurface surface) {
+  std::random_device random;
+  std::string id;
+  for (int i = 0; i < 4; ++i) {
+    char word[9];
+    std::snprintf(word, sizeof word, "%08x", unsigned(random()));
+    id += word;
+  }
+  auto session = std::make_shared<Session>();
+  session->surface = std::make_shared<const StudioSurface>(std::move(surface));
+  std::lock_guard guard(lock_);
+  sessions_[id] = {std::move(session), ++clock_};
+  while (sessions_.size() > capacity_) {
+    auto oldest = std::min_element(sessions_.begin(), sessions_.end(),
+                                   [](const auto& a, const auto& b) { return a.second.created < b.second.created; });
+    sessions_.erase(oldest);
+  }
+  return id;
+}
+
+std::shared_ptr<StudioSessions::Session> StudioSessions::find(std::string_view id) const {
+  std::lock_guard guard(lock_);
+  const auto it = sessions_.find(std::string(id));
+  return it == sessions_.end() ? nullptr : it->second.session;
+}
+
+} // namespace meander

@@ -1,0 +1,116 @@
+// End-to-end test of the studio in a real browser (Playwright driving Debian's Chromium):
+//   node e2e.mjs MEANDER_BINARY OUTPUT_FOLDER
+// Starts `meander serve` on a free port, loads the demo model, switches to a variable
+// wire, moves the s slider and checks the wire in the scene changed, downloads the STL
+// and checks it is a valid binary STL, shows a bad file's error, and saves a screenshot
+// to OUTPUT_FOLDER/studio_e2e.png. Exits 0 with a message, without testing, only when
+// Chromium is not installed.
+import { spawn } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [binary, outputFolder] = process.argv.slice(2);
+if (!binary || !outputFolder) {
+  console.error('usage: node e2e.mjs MEANDER_BINARY OUTPUT_FOLDER');
+  process.exit(2);
+}
+const browserPath = process.env.CHROMIUM ?? '/usr/bin/chromium';
+if (!existsSync(browserPath)) {
+  console.log(`studio e2e: SKIPPED: Chromium is not installed at ${browserPath} (apt-get install chromium)`);
+  process.exit(0);
+}
+
+function check(condition, message) {
+  if (!condition) throw new Error(`studio e2e: ${message}`);
+}
+
+const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const url = await new Promise((resolve, reject) => {
+  let text = '';
+  server.stdout.on('data', (chunk) => {
+    text += chunk;
+    const match = text.match(/(http:\/\/\S+)/);
+    if (match) resolve(match[1]);
+  });
+  server.on('exit', (code) => reject(new Error(`meander serve exited with ${code}`)));
+});
+
+const profile = mkdtempSync(path.join(tmpdir(), 'meander-e2e-'));
+// A fresh profile (--user-data-dir) each run, which Playwright passes itself.
+const browser = await chromium.launchPersistentContext(profile, {
+  executablePath: browserPath,
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync'],
+  viewport: { width: 1280, height: 800 },
+  acceptDownloads: true,
+});
+try {
+  const page = browser.pages()[0] ?? await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(url);
+  check(await page.$('#demo') !== null, 'the page is not built: run `make studio` (npm ci and vite build in studio/)');
+
+  // Idle: nothing in flight or queued, and the given revision (or a later one) on screen.
+  const settled = (after) => page.waitForFunction(
+    (r) => !window.studio.state.busy && !window.studio.state.pending && window.studio.state.revision > r,
+    after, { timeout: 120000 });
+
+  await page.click('#demo');
+  await settled(0);
+  check((await page.evaluate(() => window.studio.resultInfo())).lines, 'the demo model first shows its curve');
+
+  // The control mesh (no subdivision) keeps the test quick; the wire is made all the same.
+  await page.evaluate(() => {
+    const levels = document.getElementById('levels');
+    levels.value = '0';
+    levels.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  await page.selectOption('#mode', 'variable-wire');
+  await page.waitForFunction(() => window.studio.state.stats?.mode === 'variable-wire' && !window.studio.state.busy &&
+    !window.studio.state.pending, null,
+    { timeout: 120000 });
+  const before = await page.evaluate(() => ({ info: window.studio.resultInfo(), revision: window.studio.state.revision }));
+  check(!before.info.lines && before.info.vertices > 0, 'variable wire shows a mesh');
+
+  await page.evaluate(() => {
+    const s = document.getElementById('s');
+    s.value = '0.25';
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  await settled(before.revision);
+  const after = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
+  const moved = Math.max(...[0, 1, 2].map((i) => Math.max(Math.abs(after.info.min[i] - before.info.min[i]),
+    Math.abs(after.info.max[i] - before.info.max[i]))));
+  check(moved > 1e-4 || after.info.vertices !== before.info.vertices,
+    `moving s did not change the wire (bounding box moved by ${moved})`);
+  check(after.stats.watertight === true && after.stats.self_intersecting === false, 'the variable wire is watertight and clear');
+
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('a[data-file="result.stl"]')]);
+  const stlPath = path.join(outputFolder, 'studio_e2e.stl');
+  await download.saveAs(stlPath);
+  const stl = readFileSync(stlPath);
+  const triangles = stl.readUInt32LE(80);
+  check(triangles > 0 && stl.length === 84 + 50 * triangles, `downloaded STL is not binary STL (${stl.length} bytes, ${triangles} triangles)`);
+  check(triangles === after.stats.triangles, `STL has ${triangles} triangles, the stats say ${after.stats.triangles}`);
+  for (let i = 0; i < triangles; i += 997)
+    for (let k = 0; k < 12; ++k) check(Number.isFinite(stl.readFloatLE(84 + 50 * i + 4 * k)), `STL triangle ${i} is not finite`);
+
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e.png') });
+
+  // A bad file: the page shows the reader's precise message and the server keeps going.
+  await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });
+  await page.waitForSelector('#error:not([hidden])', { timeout: 30000 });
+  const message = await page.textContent('#error');
+  check(/^bad\.obj:3: /.test(message), `unexpected error message for a bad file: ${message}`);
+  check(problems.length === 0, `page errors: ${problems.join('; ')}`);
+  console.log(`studio e2e: passed (wire of ${after.stats.triangles} triangles, update ${Math.round(after.stats.seconds * 1000)} ms on the server, ${Math.round(await page.evaluate(() => window.studio.state.lastUpdateMs))} ms end to end; ` +
+    `screenshot ${path.join(outputFolder, 'studio_e2e.png')})`);
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  rmSync(profile, { recursive: true, force: true });
+}

@@ -1,0 +1,320 @@
+// The studio page: a three.js view of the surface and the result, the controls for every
+// parameter of `meander curve` and `meander wire`, and the JSON API of docs/studio.md.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+
+// ---- the view -------------------------------------------------------------------------
+const container = $('view');
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setClearColor(0xffffff);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+camera.position.set(3, 2, 4);
+const controls = new OrbitControls(camera, renderer.domElement); // left: orbit, wheel: zoom, right: pan
+// Drawn on demand, not every frame: a software-rendered browser would otherwise take the
+// CPU the server needs for the next update.
+let frameQueued = false;
+function redraw() {
+  if (frameQueued) return;
+  frameQueued = true;
+  requestAnimationFrame(() => {
+    frameQueued = false;
+    renderer.render(scene, camera);
+  });
+}
+controls.addEventListener('change', redraw);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8070, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+camera.add(sun);
+sun.position.set(2, 3, 1);
+scene.add(camera);
+
+// Pushed back so that a curve lying on the surface is drawn over it, not through it.
+const surfaceMaterial = new THREE.MeshStandardMaterial({
+  color: 0xcfcfcf, roughness: 0.9, side: THREE.DoubleSide,
+  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+});
+const resultMaterial = new THREE.MeshStandardMaterial({ color: 0xb8733a, roughness: 0.45, metalness: 0.3, side: THREE.DoubleSide });
+const curveMaterial = new THREE.LineBasicMaterial({ color: 0xbf1f14 });
+let surfaceObject = null;
+let resultObject = null;
+
+function resize() {
+  const { clientWidth: w, clientHeight: h } = container;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+  redraw();
+}
+new ResizeObserver(resize).observe(container);
+resize();
+
+// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, triangle and
+// segment counts, then float32 positions, uint32 triangles, uint32 segments.
+function parseView(buffer) {
+  const header = new DataView(buffer, 0, 16);
+  if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MNDR') throw new Error('not a Meander view');
+  const v = header.getUint32(4, true), t = header.getUint32(8, true), s = header.getUint32(12, true);
+  const positions = new Float32Array(buffer, 16, v * 3);
+  const triangles = new Uint32Array(buffer, 16 + v * 12, t * 3);
+  const segments = new Uint32Array(buffer, 16 + v * 12 + t * 12, s * 2);
+  const position = new THREE.BufferAttribute(positions, 3);
+  if (t > 0) {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', position);
+    geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
+    geometry.computeVertexNormals();
+    geometry.computeBoundingBox();
+    return { geometry, lines: false };
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', position);
+  geometry.setIndex(new THREE.BufferAttribute(segments, 1));
+  geometry.computeBoundingBox();
+  return { geometry, lines: true };
+}
+
+function replace(old, object) {
+  if (old) {
+    scene.remove(old);
+    old.geometry.dispose();
+  }
+  if (object) scene.add(object);
+  redraw();
+  return object;
+}
+
+function fit() {
+  const target = resultObject ?? surfaceObject;
+  if (!target) return;
+  const sphere = new THREE.Box3().setFromObject(target).getBoundingSphere(new THREE.Sphere());
+  const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+  const direction = camera.position.clone().sub(controls.target).normalize();
+  controls.target.copy(sphere.center);
+  camera.position.copy(sphere.center).addScaledVector(direction, distance);
+  camera.near = distance / 100;
+  camera.far = distance * 10;
+  camera.updateProjectionMatrix();
+  controls.update();
+  redraw();
+}
+
+function applySurfaceStyle() {
+  if (!surfaceObject) return;
+  const style = $('surface').value;
+  surfaceObject.visible = style !== 'off';
+  surfaceMaterial.transparent = style === 'faint';
+  surfaceMaterial.opacity = style === 'faint' ? 0.3 : 1;
+  surfaceMaterial.depthWrite = style !== 'faint';
+  surfaceMaterial.needsUpdate = true;
+  redraw();
+}
+
+// ---- state and the API ------------------------------------------------------------------
+const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, error: null, stats: null };
+window.studio = {
+  state,
+  // What the browser test reads: the result in the scene.
+  resultInfo() {
+    if (!resultObject) return null;
+    const box = resultObject.geometry.boundingBox;
+    return {
+      vertices: resultObject.geometry.attributes.position.count,
+      indices: resultObject.geometry.index.count,
+      lines: resultObject.isLineSegments === true,
+      min: box.min.toArray(), max: box.max.toArray(),
+    };
+  },
+};
+
+function showError(message) {
+  state.error = message;
+  $('error').textContent = message ?? '';
+  $('error').hidden = !message;
+}
+
+async function api(path, options) {
+  const response = await fetch(path, options);
+  if (!response.ok) {
+    let message = `HTTP ${response.status}`;
+    try { message = (await response.json()).error ?? message; } catch { /* not JSON: keep the status */ }
+    throw new Error(message);
+  }
+  return response;
+}
+
+let progressTimer = null;
+function showProgress(on) {
+  clearTimeout(progressTimer);
+  // Quick updates do not flash the indicator; longer work shows it.
+  if (on) progressTimer = setTimeout(() => { $('progress').hidden = false; }, 150);
+  else $('progress').hidden = true;
+}
+function setBusy(busy) {
+  state.busy = busy;
+  showProgress(busy);
+}
+
+async function loadSurface(reply) {
+  state.session = reply.session;
+  state.revision = 0;
+  const repairs = reply.repairs.length ? ` — repaired: ${reply.repairs.join('; ')}` : '';
+  $('mesh-name').textContent = `${reply.name}: ${reply.faces} faces${repairs}`;
+  const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
+  const { geometry } = parseView(buffer);
+  surfaceObject = replace(surfaceObject, new THREE.Mesh(geometry, surfaceMaterial));
+  resultObject = replace(resultObject, null);
+  applySurfaceStyle();
+  fit();
+  await make();
+}
+
+async function upload(file) {
+  const info = await (await api('/api/info')).json();
+  if (file.size > info.max_upload) {
+    showError(`upload too large: ${file.size} bytes (this server's --max-upload is ${info.max_upload} bytes)`);
+    return;
+  }
+  const form = new FormData();
+  form.append('mesh', file, file.name);
+  await openSurface(() => api('/api/mesh', { method: 'POST', body: form }));
+}
+
+async function openSurface(request) {
+  showError(null);
+  showProgress(true);
+  let reply;
+  try {
+    reply = await (await request()).json();
+  } catch (e) {
+    showError(e.message);
+    return;
+  } finally {
+    showProgress(false);
+  }
+  try {
+    await loadSurface(reply);
+  } catch (e) {
+    showError(e.message);
+  }
+}
+
+function params() {
+  const mode = $('mode').value;
+  return {
+    session: state.session,
+    mode,
+    quad: $('quad').value,
+    tree: $('tree').value,
+    seed: Number($('seed').value),
+    smooth: $('smooth').value,
+    samples: Number($('samples').value),
+    radius: $('radius-auto').checked ? 'auto' : Number($('radius').value),
+    sides: Number($('sides').value),
+    s: Number($('s').value),
+    t: Number($('t').value),
+    thickness: Number($('thickness').value),
+    levels: Number($('levels').value),
+  };
+}
+
+// One request at a time; changes made meanwhile are coalesced into one more request.
+async function make() {
+  if (!state.session) return;
+  if (state.busy) {
+    state.pending = true;
+    return;
+  }
+  state.pending = false;
+  setBusy(true);
+  const start = performance.now();
+  try {
+    const stats = await (await api('/api/make', {
+      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(params()),
+    })).json();
+    const buffer = await (await api(`/api/result/${state.session}/view.bin`)).arrayBuffer();
+    const { geometry, lines } = parseView(buffer);
+    resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, curveMaterial) : new THREE.Mesh(geometry, resultMaterial));
+    state.lastUpdateMs = performance.now() - start;
+    state.revision = stats.revision;
+    state.stats = stats;
+    showStats(stats);
+    showError(null);
+  } catch (e) {
+    showError(e.message);
+  } finally {
+    setBusy(false);
+    updateDownloads();
+    if (state.pending) make();
+  }
+}
+
+function showStats(stats) {
+  const yesNo = (b) => (b ? 'yes' : 'no');
+  const rows = [
+    ['triangles', stats.triangles.toLocaleString()],
+    ['curves', stats.curves],
+    ['curve length', stats.curve_length.toPrecision(5)],
+  ];
+  if (stats.mode !== 'curve') {
+    rows.push(['faces', stats.faces.toLocaleString()], ['watertight', yesNo(stats.watertight)],
+      ['self-intersection', yesNo(stats.self_intersecting)]);
+    if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
+  }
+  rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
+  $('stats').innerHTML = rows.map(([k, v]) => `<tr><th>${k}</th><td>${v}</td></tr>`).join('');
+}
+
+function updateDownloads() {
+  const curve = $('mode').value === 'curve';
+  for (const a of document.querySelectorAll('#downloads a')) {
+    const enabled = state.revision > 0 && !(curve && a.hasAttribute('data-mesh'));
+    a.classList.toggle('disabled', !enabled);
+    a.href = enabled ? `/api/result/${state.session}/${a.dataset.file}` : '#';
+    a.toggleAttribute('download', enabled);
+  }
+}
+
+// ---- controls -----------------------------------------------------------------------------
+let debounce = null;
+function changed() {
+  clearTimeout(debounce);
+  debounce = setTimeout(make, 120);
+}
+
+function showModeControls() {
+  const mode = $('mode').value;
+  for (const el of document.querySelectorAll('[data-modes]')) el.hidden = !el.dataset.modes.split(' ').includes(mode);
+  updateDownloads();
+}
+
+for (const output of document.querySelectorAll('output[for]')) {
+  const input = $(output.htmlFor.value);
+  const show = () => { output.textContent = input.value; };
+  input.addEventListener('input', show);
+  show();
+}
+for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius', 'radius-auto', 'sides', 's', 't', 'thickness', 'levels'])
+  $(id).addEventListener('input', changed);
+$('mode').addEventListener('input', showModeControls);
+$('radius-auto').addEventListener('input', () => { $('radius').disabled = $('radius-auto').checked; });
+$('new-seed').addEventListener('click', () => {
+  $('seed').value = Math.floor(Math.random() * 2 ** 31);
+  changed();
+});
+$('surface').addEventListener('input', applySurfaceStyle);
+$('fit').addEventListener('click', fit);
+$('demo').addEventListener('click', () => openSurface(() => api('/api/demo', { method: 'POST' })));
+$('file').addEventListener('change', (e) => { if (e.target.files[0]) upload(e.target.files[0]); });
+const drop = $('drop');
+for (const name of ['dragenter', 'dragover']) drop.addEventListener(name, (e) => { e.preventDefault(); drop.classList.add('over'); });
+for (const name of ['dragleave', 'drop']) drop.addEventListener(name, () => drop.classList.remove('over'));
+drop.addEventListener('drop', (e) => {
+  e.preventDefault();
+  if (e.dataTransfer.files[0]) upload(e.dataTransfer.files[0]);
+});
+showModeControls();

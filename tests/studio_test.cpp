@@ -1,0 +1,176 @@
+// The studio's library side (studio.h): parameters checked as the CLI checks them, uploads
+// read from memory with the CLI's messages, results made by the same calls, and files.
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/shapes.h"
+#include "meander/studio.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace meander {
+namespace {
+
+std::string message_of(std::string_view body) {
+  try {
+    parse_make_request(body);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Studio, MakeRequestTakesEveryCliParameter) {
+  const MakeRequest r = parse_make_request(R"({"session": "ab", "mode": "variable-ribbon", "quad": "catmull-clark",
+      "tree": "dfs", "seed": 42, "smooth": "catmull-rom", "samples": 6, "radius": 0.5, "sides": 5, "s": 0.3,
+      "t": 0.9, "thickness": 0.02, "levels": 0})");
+  EXPECT_EQ(r.session, "ab");
+  EXPECT_EQ(r.params.mode, StudioMode::variable_ribbon);
+  EXPECT_EQ(r.params.job.quadrangulation, Quadrangulation::catmull_clark);
+  EXPECT_EQ(r.params.job.cycle.tree, TreeStrategy::dfs);
+  EXPECT_EQ(r.params.job.cycle.seed, 42u);
+  EXPECT_EQ(r.params.job.curve.smoothing, Smoothing::catmull_rom);
+  EXPECT_EQ(r.params.job.curve.samples, 6);
+  EXPECT_EQ(r.params.radius, 0.5);
+  EXPECT_EQ(r.params.sides, 5);
+  EXPECT_EQ(r.params.s, 0.3);
+  EXPECT_EQ(r.params.t, 0.9);
+  EXPECT_EQ(r.params.thickness, 0.02);
+  EXPECT_EQ(r.params.levels, 0);
+  EXPECT_EQ(parse_make_request(R"({"session": "x", "radius": "auto"})").params.radius, 0);
+}
+
+TEST(Studio, MakeRequestRefusalsNameTheKey) {
+  EXPECT_EQ(message_of(R"({"session": "x", "s": 1.5})"), "s: expected a number in [0, 1], got 1.5");
+  EXPECT_EQ(message_of(R"({"session": "x", "levels": 2.5})"), "levels: expected an integer in [0, 6], got 2.5");
+  EXPECT_EQ(message_of(R"({"session": "x", "sides": 2})"), "sides: expected an integer in [3, 64], got 2");
+  EXPECT_EQ(message_of(R"({"session": "x", "radius": -1})"), "radius: expected a positive number or \"auto\", got -1");
+  EXPECT_EQ(message_of(R"({"session": "x", "seed": -3})"), "seed: expected a non-negative integer, got -3");
+  EXPECT_EQ(message_of(R"({"session": "x", "colour": "red"})"), "\"colour\": unknown parameter");
+  EXPECT_NE(message_of(R"({"session": "x", "tree": "oak"})").find("tree: "), std::string::npos);
+  EXPECT_NE(message_of(R"({"session": "x", "mode": "duo"})").find("mode: unknown mode 'duo'"), std::string::npos);
+  EXPECT_EQ(message_of(R"({"s": 0.5})"), "session: missing (upload a mesh first: POST /api/mesh)");
+  EXPECT_EQ(message_of("{\"session\": "), "request body is not valid JSON");
+  EXPECT_EQ(message_of("[1, 2]"), "request body: expected a JSON object, got [1,2]");
+  EXPECT_NE(message_of(std::string(100000, ' ')).find("at most"), std::string::npos);
+}
+
+TEST(Studio, UploadsAreReadFromMemoryWithTheCliMessages) {
+  const StudioSurface s = load_studio_surface("dir/../quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  EXPECT_EQ(s.name, "quad.obj"); // only the last component, never a path
+  EXPECT_EQ(s.input_faces, 1);
+  try {
+    load_studio_surface("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+    FAIL() << "a face referring to a missing vertex was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("bad.obj:3: ", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(load_studio_surface("notes.txt", "hello"), UsageError);
+  EXPECT_THROW(load_studio_surface("empty.stl", ""), InputError);
+}
+
+// tinygltf would resolve a buffer's URI as a file beside the upload: on a server that is
+// any file the server can read, so uploads must embed their data.
+TEST(Studio, GltfUploadReferringToFilesIsRefused) {
+  const std::string gltf = R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/passwd", "byteLength": 12}]})";
+  try {
+    load_studio_surface("evil.gltf", gltf);
+    FAIL() << "an external buffer URI was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("evil.gltf: buffer 0 refers to the file \"/etc/passwd\""), std::string::npos) << e.what();
+  }
+  // The same inside a GLB container.
+  std::string glb = "glTF";
+  auto u32 = [&glb](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  std::string chunk = gltf;
+  while (chunk.size() % 4) chunk += ' ';
+  u32(2), u32(uint32_t(20 + chunk.size())), u32(uint32_t(chunk.size()));
+  glb += "JSON" + chunk;
+  EXPECT_THROW(load_studio_surface("evil.glb", glb), InputError);
+}
+
+TEST(Studio, EveryModeMakesWhatTheCliMakes) {
+  const StudioSurface surface = demo_surface();
+  for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon"}) {
+    SCOPED_TRACE(mode);
+    StudioParams params{.mode = parse_studio_mode(mode), .levels = 0};
+    const StudioResult r = make_studio_result(surface, params);
+    EXPECT_EQ(r.curve.curves.start.size(), 2u); // one closed curve: the pretzel is one component
+    EXPECT_GT(r.curve_length, 0);
+    if (params.mode == StudioMode::curve) {
+      EXPECT_EQ(r.mesh.num_faces(), 0);
+      continue;
+    }
+    EXPECT_GT(r.mesh.num_faces(), 0);
+    EXPECT_FALSE(r.report.self_intersecting);
+    const bool wire = params.mode == StudioMode::constant_wire || params.mode == StudioMode::variable_wire;
+    EXPECT_EQ(r.report.watertight, wire);
+  }
+}
+
+TEST(Studio, ViewBytesHoldTheTrianglesAndSegments) {
+  PolygonMesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.add_face({0, 1, 2, 3});
+  Polylines loop;
+  loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  loop.start = {0, 3};
+  const std::string bytes = studio_view_bytes(quad, loop);
+  ASSERT_EQ(bytes.size(), 16u + 7 * 12 + 2 * 12 + 3 * 8);
+  EXPECT_EQ(bytes.substr(0, 4), "MNDR");
+  uint32_t counts[3];
+  std::memcpy(counts, bytes.data() + 4, 12);
+  EXPECT_EQ(counts[0], 7u);
+  EXPECT_EQ(counts[1], 2u);
+  EXPECT_EQ(counts[2], 3u); // a closed loop of 3 points has 3 segments
+  uint32_t last_segment[2];
+  std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
+  EXPECT_EQ(last_segment[0], 6u); // 4 mesh vertices first, then the curve's: closes 6 -> 4
+  EXPECT_EQ(last_segment[1], 4u);
+}
+
+TEST(Studio, ResultFilesHaveFixedNames) {
+  EXPECT_EQ(parse_studio_file("result.stl"), StudioFile::stl);
+  for (const char* bad : {"../result.stl", "result.stl/", "/etc/passwd", "", "RESULT.STL", "result.stl.."})
+    EXPECT_THROW(parse_studio_file(bad), UsageError) << bad;
+}
+
+TEST(Studio, DownloadsAreTheWritersFiles) {
+  const StudioSurface surface = demo_surface();
+  const std::filesystem::path scratch = test::output_dir();
+  const StudioResult wire = make_studio_result(surface, {.mode = StudioMode::variable_wire, .levels = 0});
+  const StudioDownload stl = studio_download(surface, wire, StudioFile::stl, scratch, "a");
+  uint32_t triangles = 0;
+  std::memcpy(&triangles, stl.bytes.data() + 80, 4);
+  EXPECT_EQ(triangles, wire.report.triangles);
+  EXPECT_EQ(stl.bytes.size(), 84 + 50 * size_t(triangles));
+  EXPECT_EQ(stl.filename, "pretzel_variable-wire.stl");
+  const StudioDownload zip = studio_download(surface, wire, StudioFile::obj_zip, scratch, "b");
+  EXPECT_EQ(zip.bytes.substr(0, 4), std::string("PK\3\4", 4));
+  EXPECT_NE(zip.bytes.find("pretzel_variable-wire.mtl"), std::string::npos);
+  EXPECT_NE(zip.bytes.find("mtllib pretzel_variable-wire.mtl"), std::string::npos); // stored, so readable
+  EXPECT_EQ(studio_download(surface, wire, StudioFile::png, scratch, "c").bytes.substr(1, 3), "PNG");
+  // Nothing is left behind in the scratch folder.
+  EXPECT_TRUE(std::filesystem::is_empty(scratch));
+  const StudioResult curve = make_studio_result(surface, {});
+  EXPECT_THROW(studio_download(surface, curve, StudioFile::glb, scratch, "d"), UsageError);
+  EXPECT_EQ(studio_download(surface, curve, StudioFile::svg, scratch, "e").bytes.substr(0, 4), "<svg");
+}
+
+TEST(Studio, SessionsAreFoundByIdAndTheOldestDropped) {
+  StudioSessions sessions(2);
+  const std::string a = sessions.add(demo_surface());
+  EXPECT_EQ(a.size(), 32u);
+  EXPECT_NE(sessions.find(a), nullptr);
+  EXPECT_EQ(sessions.find("../" + a), nullptr);
+  const std::string b = sessions.add(demo_surface()), c = sessions.add(demo_surface());
+  EXPECT_NE(a, b);
+  EXPECT_EQ(sessions.find(a), nullptr);
+  EXPECT_NE(sessions.find(b), nullptr);
+  EXPECT_NE(sessions.find(c), nullptr);
+}
+
+} // namespace
+} // namespace meander
