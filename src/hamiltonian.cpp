@@ -44,50 +44,20 @@ void require_closed_sides(const QuadMesh& m) {
                             "needs a closed quad mesh (use --quad dual-simplest, which handles boundaries)");
 }
 
-} // namespace
-
-TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) {
+// Every quad side closed (only half quads end at a boundary) and triangle names within
+// an int32.
+void require_cycle_size(const QuadMesh& m) {
   require_closed_sides(m);
+  if (m.num_quads() >= (1 << 29))
+    throw UsageError("the quad mesh has " + std::to_string(m.num_quads()) + " quads; at most 2^29 are supported");
+}
+
+// The loops of the triangulation `diagonal` gives, each walked once from its first
+// triangle in quad order.
+TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal) {
   const int32_t nq = m.num_quads();
-  if (nq >= (1 << 29)) throw UsageError("the quad mesh has " + std::to_string(nq) + " quads; at most 2^29 are supported");
   TriangleCycle result;
-  result.diagonal.assign(size_t(nq), 0);
-
-  // With every quad split along corners 0-2 the triangles form disjoint loops (each
-  // triangle has two quad sides, each side two triangles): the nodes of the graph.
-  Graph graph;
-  std::vector<int32_t> edge_quad;
-  // At most one graph edge per quad: reserving spares the copies of a growing array.
-  graph.edges.reserve(size_t(nq));
-  edge_quad.reserve(size_t(nq));
-  auto join = [&](int32_t q, int32_t a, int32_t b) {
-    if (a == b) return;
-    graph.edges.push_back({a, b});
-    edge_quad.push_back(q);
-  };
-  if (m.face_point_offset >= 0) {
-    // Dual of Simplest: the loops are the faces, named by the face points.
-    graph.num_nodes = int32_t(m.positions.size()) - m.face_point_offset;
-    for (int32_t q = 0; q < nq; ++q)
-      if (!m.is_half(q)) join(q, m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset);
-  } else {
-    std::vector<int32_t> loop(2 * size_t(nq), -1);
-    for (int32_t q = 0; q < nq; ++q)
-      for (int a = m.is_half(q) ? 3 : 1; a <= 3; a += 2)
-        if (loop[size_t(slot(q, a))] < 0) {
-          walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = graph.num_nodes; });
-          ++graph.num_nodes;
-        }
-    for (int32_t q = 0; q < nq; ++q)
-      if (!m.is_half(q)) join(q, loop[size_t(2 * q)], loop[size_t(2 * q + 1)]);
-  }
-  // Flipping a quad whose two triangles lie on different loops merges the loops, so
-  // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
-  // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) result.diagonal[size_t(edge_quad[size_t(e)])] = 1;
-  graph = Graph();
-  std::vector<int32_t>().swap(edge_quad);
-
+  result.diagonal = std::move(diagonal);
   std::vector<uint8_t> visited(2 * size_t(nq), 0);
   result.order.reserve(2 * size_t(nq));
   for (int32_t q = 0; q < nq; ++q) {
@@ -102,6 +72,62 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
     }
   }
   return result;
+}
+
+} // namespace
+
+TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) {
+  require_cycle_size(m);
+  const int32_t nq = m.num_quads();
+  const bool initial = !options.initial_diagonal.empty();
+  if (initial && int64_t(options.initial_diagonal.size()) != nq)
+    throw UsageError("initial diagonals: " + std::to_string(options.initial_diagonal.size()) + " for " +
+                     std::to_string(nq) + " quads");
+  std::vector<uint8_t> diagonal(size_t(nq), 0);
+  if (initial) diagonal.assign(options.initial_diagonal.begin(), options.initial_diagonal.end());
+
+  // With every quad split along its initial diagonal the triangles form disjoint loops
+  // (each triangle has two quad sides, each side two triangles): the nodes of the graph.
+  Graph graph;
+  std::vector<int32_t> edge_quad;
+  // At most one graph edge per quad: reserving spares the copies of a growing array.
+  graph.edges.reserve(size_t(nq));
+  edge_quad.reserve(size_t(nq));
+  auto join = [&](int32_t q, int32_t a, int32_t b) {
+    if (a == b) return;
+    graph.edges.push_back({a, b});
+    edge_quad.push_back(q);
+  };
+  if (m.face_point_offset >= 0 && !initial) {
+    // Dual of Simplest: the loops are the faces, named by the face points.
+    graph.num_nodes = int32_t(m.positions.size()) - m.face_point_offset;
+    for (int32_t q = 0; q < nq; ++q)
+      if (!m.is_half(q)) join(q, m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset);
+  } else {
+    std::vector<int32_t> loop(2 * size_t(nq), -1);
+    for (int32_t q = 0; q < nq; ++q)
+      for (int a = m.is_half(q) ? 3 : 1 - diagonal[size_t(q)]; a <= 3; a += 2)
+        if (loop[size_t(slot(q, a))] < 0) {
+          walk_loop(m, diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = graph.num_nodes; });
+          ++graph.num_nodes;
+        }
+    for (int32_t q = 0; q < nq; ++q)
+      if (!m.is_half(q)) join(q, loop[size_t(2 * q)], loop[size_t(2 * q + 1)]);
+  }
+  // Flipping a quad whose two triangles lie on different loops merges the loops, so
+  // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
+  // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
+  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) diagonal[size_t(edge_quad[size_t(e)])] ^= 1;
+  graph = Graph();
+  std::vector<int32_t>().swap(edge_quad);
+  return loops_of(m, std::move(diagonal));
+}
+
+TriangleCycle triangle_loops(const QuadMesh& m, std::vector<uint8_t> diagonal) {
+  require_cycle_size(m);
+  if (int64_t(diagonal.size()) != m.num_quads())
+    throw UsageError("diagonals: " + std::to_string(diagonal.size()) + " for " + std::to_string(m.num_quads()) + " quads");
+  return loops_of(m, std::move(diagonal));
 }
 
 std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 
 namespace meander {
@@ -25,9 +26,20 @@ struct Point {
   }
 };
 
-} // namespace
+// A texture coordinate as a face-varying value.
+struct Uv {
+  double u = 0, v = 0;
+  void Clear(void* = nullptr) { u = v = 0; }
+  void AddWithWeight(const Uv& p, float w) {
+    u += w * p.u;
+    v += w * p.v;
+  }
+};
 
-PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) {
+// Refines the mesh and, if given, its per-corner texture coordinates and per-face
+// materials (empty: none).
+TexturedMesh refine(const PolygonMesh& mesh, std::span<const TexCoord> texcoords, std::span<const int32_t> face_material,
+                    const SubdivideOptions& options) {
   using namespace OpenSubdiv;
   if (options.levels < 0) throw UsageError("subdivision levels must be >= 0 (got " + std::to_string(options.levels) + ")");
   if (double(mesh.num_corners()) * std::pow(4.0, options.levels) > 2147483647.0)
@@ -40,9 +52,21 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) 
   desc.numFaces = mesh.num_faces();
   desc.numVertsPerFace = sizes.data();
   desc.vertIndicesPerFace = mesh.face_vertices.data();
+  // Every corner its own value: the texture may jump across any edge (an atlas).
+  std::vector<int> corner_values;
+  Far::TopologyDescriptor::FVarChannel channel;
+  if (!texcoords.empty()) {
+    corner_values.resize(texcoords.size());
+    for (size_t i = 0; i < corner_values.size(); ++i) corner_values[i] = int(i);
+    channel.numValues = int(texcoords.size());
+    channel.valueIndices = corner_values.data();
+    desc.numFVarChannels = 1;
+    desc.fvarChannels = &channel;
+  }
 
   Sdc::Options sdc;
   sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  sdc.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
   if (!refiner) throw TopologyError("OpenSubdiv refused the mesh topology (is it manifold?)");
@@ -71,7 +95,8 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) 
     src = limit.data();
   }
 
-  PolygonMesh out;
+  TexturedMesh result;
+  PolygonMesh& out = result.mesh;
   out.positions.resize(size_t(finest.GetNumVertices()));
   for (size_t v = 0; v < out.positions.size(); ++v) out.positions[v] = {float(src[v].x), float(src[v].y), float(src[v].z)};
   out.face_start.reserve(size_t(finest.GetNumFaces()) + 1);
@@ -81,7 +106,43 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) 
     for (int i = 0; i < corners.size(); ++i) out.face_vertices.push_back(corners[i]);
     out.face_start.push_back(int32_t(out.face_vertices.size()));
   }
-  return out;
+  if (!texcoords.empty()) {
+    // Bilinear face-varying values have their limit where they are refined to.
+    std::vector<Uv> uv(size_t(refiner->GetNumFVarValuesTotal(0)));
+    for (size_t i = 0; i < texcoords.size(); ++i) uv[i] = {texcoords[i].u, texcoords[i].v};
+    Uv* uv_src = uv.data();
+    for (int level = 1; level <= options.levels; ++level) {
+      Uv* dst = uv_src + refiner->GetLevel(level - 1).GetNumFVarValues(0);
+      primvar.InterpolateFaceVarying(level, uv_src, dst, 0);
+      uv_src = dst;
+    }
+    result.appearance.texcoords.reserve(out.face_vertices.size());
+    for (int f = 0; f < finest.GetNumFaces(); ++f)
+      for (int value : finest.GetFaceFVarValues(f, 0))
+        result.appearance.texcoords.push_back({float(uv_src[value].u), float(uv_src[value].v)});
+  }
+  if (!face_material.empty()) {
+    result.appearance.face_material.resize(size_t(finest.GetNumFaces()));
+    for (int f = 0; f < finest.GetNumFaces(); ++f) {
+      int parent = f;
+      for (int level = options.levels; level > 0; --level) parent = refiner->GetLevel(level).GetFaceParentFace(parent);
+      result.appearance.face_material[size_t(f)] = face_material[size_t(parent)];
+    }
+  }
+  return result;
+}
+
+} // namespace
+
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) {
+  return std::move(refine(mesh, {}, {}, options).mesh);
+}
+
+TexturedMesh subdivide(const TexturedMesh& mesh, const SubdivideOptions& options) {
+  check_appearance(mesh.mesh, mesh.appearance, "subdivide");
+  TexturedMesh result = refine(mesh.mesh, mesh.appearance.texcoords, mesh.appearance.face_material, options);
+  result.appearance.materials = mesh.appearance.materials;
+  return result;
 }
 
 } // namespace meander

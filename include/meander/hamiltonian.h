@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ namespace meander {
 struct CycleOptions {
   TreeStrategy tree = TreeStrategy::random;
   uint64_t seed = 1;
+  // The diagonals to start from, one per quad as TriangleCycle::diagonal (half quads 0);
+  // empty: every quad starts split along corners 0-2. The duotone's flip rule starts
+  // from random ones, as the paper's Section 5.3 does.
+  std::span<const uint8_t> initial_diagonal;
 };
 
 // The Hamiltonian cycles of the triangulated quad mesh. Cycle k is the triangles
@@ -47,6 +52,11 @@ inline std::array<int32_t, 3> cycle_triangle(const QuadMesh& quads, int32_t id) 
 // neighbour (a quad mesh with boundary: only half quads may end at a boundary), and
 // UsageError above 2^29 quads (triangle names must fit an int32).
 TriangleCycle hamiltonian_cycle(const QuadMesh& quads, const CycleOptions& options = {});
+
+// The loops of the triangulation that `diagonal` gives, without any flip: as many as
+// they are (the duotone's tree rule chooses diagonals that leave one per component).
+// Same requirements and layout as hamiltonian_cycle; O(quads).
+TriangleCycle triangle_loops(const QuadMesh& quads, std::vector<uint8_t> diagonal);
 
 // Independent check of a cycle against its quad mesh, sharing no code with the
 // construction: every triangle of the triangulation given by `diagonal` appears exactly
