@@ -4,6 +4,7 @@
 #include "meander/io.h"
 #include "meander/shapes.h"
 #include "checker_quad.h"
+#include "gltf_validator.h"
 #include "io_test_support.h"
 #include "test_support.h"
 
@@ -284,27 +285,8 @@ TEST(Gltf, RefusesMalformedFilesWithTheFileName) {
             past.string() + ": mesh 0 primitive 0: POSITION: accessor 0: reaches past the end of its buffer view");
 }
 
-// The Khronos glTF validator, run through node from tests/node_modules (`make test`
-// installs it with npm ci).
-const fs::path tests_dir = fs::path(__FILE__).parent_path();
-
-bool validator_installed() {
-  return fs::exists(tests_dir / "node_modules/gltf-validator") && std::system("node --version > /dev/null 2>&1") == 0;
-}
-
-nlohmann::json validate(const fs::path& file) {
-  const std::string command = "node '" + (tests_dir / "gltf_validate.cjs").string() + "' '" + file.string() + "' 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string out;
-  char buffer[4096];
-  while (size_t n = fread(buffer, 1, sizeof buffer, pipe.get())) out.append(buffer, n);
-  const nlohmann::json report = nlohmann::json::parse(out, nullptr, false);
-  if (report.is_discarded()) ADD_FAILURE() << "validator output: " << out;
-  return report;
-}
-
 TEST(Glb, KhronosValidatorFindsNoErrorsOrWarnings) {
-  if (!validator_installed())
+  if (!test::gltf_validator_installed())
     GTEST_SKIP() << "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH";
   const fs::path dir = output_dir();
   PolygonMesh with_unused_vertex = torus(400);
@@ -314,7 +296,7 @@ TEST(Glb, KhronosValidatorFindsNoErrorsOrWarnings) {
   write_textured_mesh(checker_quad(), dir / "quad.glb");
   write_textured_mesh(two_material_quad(), dir / "two.glb");
   for (const char* name : {"torus.glb", "grid_no_normals.glb", "quad.glb", "two.glb"}) {
-    const nlohmann::json report = validate(dir / name);
+    const nlohmann::json report = test::gltf_validator_report(dir / name);
     ASSERT_TRUE(report.is_object()) << name;
     EXPECT_EQ(report["numErrors"], 0) << name << ": " << report["messages"].dump(1);
     EXPECT_EQ(report["numWarnings"], 0) << name << ": " << report["messages"].dump(1);

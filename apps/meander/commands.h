@@ -18,6 +18,7 @@ Command add_info_command(CLI::App& parent);
 Command add_generate_command(CLI::App& parent);
 Command add_render_command(CLI::App& parent);
 Command add_wire_command(CLI::App& parent);
+Command add_duotone_command(CLI::App& parent);
 Command add_serve_command(CLI::App& parent);
 
 } // namespace meander::cli

@@ -1,0 +1,117 @@
+#include "cli_support.h"
+#include "commands.h"
+#include "picture_options.h"
+
+#include "meander/duotone.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/render.h"
+#include "meander/subdivide.h"
+
+#include <memory>
+
+namespace meander::cli {
+
+namespace {
+
+struct DuotoneArgs {
+  std::string input, output, png, curve, regions;
+  std::string quad = "catmull-clark", rule = "tree", tree = "random", colors = "yellow,blue", tiles = "truchet";
+  uint64_t seed = 1;
+  int32_t texture_size = 1024;
+  int subdivide = 0;
+  PictureArgs picture;
+  bool strict = false, verbose = false;
+};
+
+// "A.ply,B.ply" -> the two paths.
+std::array<std::string, 2> region_paths(const std::string& text) {
+  const size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos || comma == 0 || comma + 1 == text.size())
+    throw UsageError("--regions '" + text + "': expected two files A.ply,B.ply (one per colour)");
+  return {text.substr(0, comma), text.substr(comma + 1)};
+}
+
+void run_duotone(const DuotoneArgs& a) {
+  const DuotoneOptions options{.quadrangulation = parse_quadrangulation(a.quad), .rule = parse_duotone_rule(a.rule),
+                               .tree = parse_tree_strategy(a.tree), .seed = a.seed};
+  const TileOptions tiles{.style = parse_tile_style(a.tiles), .colors = parse_duotone_colors(a.colors), .texture_size = a.texture_size};
+  require_output_path(a.output, {".obj", ".glb"}, "-o");
+  if (!a.curve.empty()) require_output_path(a.curve, {".obj", ".ply", ".json", ".svg"}, "--curve");
+  std::array<std::string, 2> regions;
+  if (!a.regions.empty()) {
+    regions = region_paths(a.regions);
+    for (const std::string& path : regions) require_output_path(path, {".ply"}, "--regions");
+  }
+  if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
+  const RenderOptions picture = picture_options(a.picture);
+
+  StageLog log(a.verbose);
+  const RepairResult input = read_and_repair(a.input, a.strict, log);
+  log.restart();
+  const Connectivity connectivity = input.connectivity.edge_start.empty() ? build_connectivity(input.mesh) : input.connectivity;
+  const Duotone duotone = make_duotone(input.mesh, connectivity, options);
+  for (const std::string& note : duotone.notes) log.note(a.input + ": note: " + note);
+  log.lap("duotone");
+  TexturedMesh surface = duotone_surface(duotone, tiles);
+  log.lap("tiles");
+  if (a.subdivide > 0) {
+    surface = subdivide(surface, {.levels = a.subdivide});
+    log.lap("subdivide");
+  }
+  // Everything is computed before the first file is written, so that a refusal leaves
+  // no output behind.
+  Polylines curves;
+  if (!a.curve.empty()) curves = separating_curves(duotone, tiles.style);
+  std::array<PolygonMesh, 2> pieces;
+  if (!a.regions.empty()) pieces = duotone_regions(duotone, tiles.style);
+  log.lap("curve, regions");
+
+  write_textured_mesh(surface, a.output);
+  if (!a.curve.empty()) write_polylines(curves, a.curve);
+  for (int k = 0; k < 2 && !a.regions.empty(); ++k) write_mesh(pieces[size_t(k)], regions[size_t(k)]);
+  log.lap("write");
+  std::string picture_written;
+  if (!a.png.empty()) {
+    Scene scene;
+    scene.meshes.push_back({.mesh = surface.mesh, .appearance = surface.appearance});
+    picture_written = write_picture(scene, picture, a.picture, a.png);
+    log.lap("render png");
+  }
+  const int32_t curves_count = duotone.cycle.num_cycles();
+  std::fprintf(stderr, "%s: %d quads (%s), 2 colour regions and %d separating curve%s, %s tiles\n", a.output.c_str(),
+               duotone.quads.num_quads(), a.quad == "catmull-clark" && duotone.quadrangulation != Quadrangulation::catmull_clark ? "dual-simplest" : a.quad.c_str(),
+               curves_count, curves_count == 1 ? "" : "s (one per component)", std::string(to_string(tiles.style)).c_str());
+  if (!a.png.empty()) log.note("wrote " + picture_written);
+}
+
+} // namespace
+
+Command add_duotone_command(CLI::App& parent) {
+  auto args = std::make_shared<DuotoneArgs>();
+  CLI::App* app = parent.add_subcommand("duotone", "Paint a surface in two colours: two connected regions separated by one curve per component (Truchet tiles)");
+  app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
+  app->add_option("-o,--output", args->output, "textured surface: .obj (with .mtl and a .png texture beside it) or .glb")->required();
+  app->add_option("--quad", args->quad, "2-colourable quads: catmull-clark (dual-simplest on a mesh with boundary), dual-simplest "
+                                        "(larger tiles), none (an all-quad closed input whose vertices are 2-colourable)")
+      ->check(CLI::IsMember({"catmull-clark", "dual-simplest", "none"}))->capture_default_str();
+  app->add_option("--rule", args->rule, "tree: a spanning tree of the yellow diagonals (the reviewer's rule); flip: random "
+                                        "diagonals flipped until one curve (the paper's)")
+      ->check(CLI::IsMember({"tree", "flip"}))->capture_default_str();
+  app->add_option("--tree", args->tree, "which spanning tree: the look")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
+  app->add_option("--seed", args->seed, "random seed (same seed, same output)")->capture_default_str();
+  app->add_option("--colors", args->colors, "the two colours C1,C2: names (yellow, gold, blue, navy, red, ...) or #rrggbb")->capture_default_str();
+  app->add_option("--tiles", args->tiles, "tile style: truchet, outline, triangles, stripes or dots")->capture_default_str();
+  app->add_option("--texture-size", args->texture_size, "texture atlas width in pixels (even, 64..8192)")->capture_default_str();
+  app->add_option("--subdivide", args->subdivide, "Catmull-Clark subdivision levels of the textured surface (OpenSubdiv, "
+                                                  "texture coordinates carried along)")->check(CLI::Range(0, 5))->capture_default_str();
+  app->add_option("--curve", args->curve, "also write the separating curve(s) on the quad surface: .obj, .ply, .json, .svg");
+  app->add_option("--regions", args->regions, "also write the two colour regions cut along the curve: A.ply,B.ply (binary)");
+  CLI::Option* png = app->add_option("--png", args->png, "also render the textured surface to this picture (.png)");
+  add_picture_options(*app, args->picture, "the --png picture", png);
+  app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
+  app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
+  return {app, [args] { run_duotone(*args); }};
+}
+
+} // namespace meander::cli
