@@ -242,8 +242,8 @@ Linear tile_color(TileStyle style, Linear corner, Linear band, double s, double 
   case TileStyle::triangles:
     return base;
   case TileStyle::outline: {
-    const Linear ink = mix(mix(corner, band, 0.5f), Linear{0, 0, 0}, 0.8f);
-    return std::abs(to_corner - 0.5) < 0.045 ? ink : base;
+    const Linear ink = mix(mix(corner, band, 0.5f), Linear{0, 0, 0}, 0.85f);
+    return std::abs(to_corner - 0.5) < 0.06 ? ink : base;
   }
   case TileStyle::stripes: {
     // Bands 0.1 wide parallel to the curve, the one along it in the plain colour.
@@ -251,7 +251,9 @@ Linear tile_color(TileStyle style, Linear corner, Linear band, double s, double 
     return stripe % 2 == 1 ? mix(base, Linear{1, 1, 1}, 0.3f) : base;
   }
   case TileStyle::dots:
-    return !in_corner && std::hypot(s - 0.5, t - 0.5) < 0.11 ? mix(band, Linear{1, 1, 1}, 0.65f) : base;
+    // Small enough to leave the band wide on both sides, in a tone between the two
+    // colours so that it reads on either.
+    return !in_corner && std::hypot(s - 0.5, t - 0.5) < 0.08 ? mix(band, corner, 0.5f) : base;
   }
   return base;
 }

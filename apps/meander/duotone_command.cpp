@@ -78,10 +78,13 @@ void run_duotone(const DuotoneArgs& a) {
     picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");
   }
-  const int32_t curves_count = duotone.cycle.num_cycles();
-  std::fprintf(stderr, "%s: %d quads (%s), 2 colour regions and %d separating curve%s, %s tiles\n", a.output.c_str(),
-               duotone.quads.num_quads(), a.quad == "catmull-clark" && duotone.quadrangulation != Quadrangulation::catmull_clark ? "dual-simplest" : a.quad.c_str(),
-               curves_count, curves_count == 1 ? "" : "s (one per component)", std::string(to_string(tiles.style)).c_str());
+  const int32_t components = duotone.cycle.num_cycles();
+  const std::string regions_text = components == 1 ? "2 colour regions and 1 separating curve"
+                                                   : std::to_string(components) + " components, each 2 colour regions and 1 separating curve";
+  std::fprintf(stderr, "%s: %d quads (%s), %s, %s tiles\n", a.output.c_str(), duotone.quads.num_quads(),
+               duotone.quadrangulation == Quadrangulation::catmull_clark ? "catmull-clark"
+               : duotone.quadrangulation == Quadrangulation::dual_simplest ? "dual-simplest" : "as is",
+               regions_text.c_str(), std::string(to_string(tiles.style)).c_str());
   if (!a.png.empty()) log.note("wrote " + picture_written);
 }
 

@@ -91,7 +91,7 @@ enum class TileStyle {
   outline,   // the Truchet arcs drawn as a dark band over the boundary
   triangles, // straight chords between side midpoints instead of arcs
   stripes,   // the Truchet regions in bands of two shades parallel to the boundary
-  dots,      // Truchet tiles with a light dot in the middle of each band: a dotted river
+  dots,      // Truchet tiles with a dot of a middle tone in the middle of each band: a dotted river
 };
 
 // Parses a style name; throws UsageError("unknown tile style 'x' (expected truchet,
