@@ -63,6 +63,7 @@ bench: build
 gallery: build
 	MEANDER=$(BUILD)/meander docs/make_gallery.sh
 	MEANDER=$(CURDIR)/$(BUILD)/meander MESHES=$(CURDIR)/../shared/meshes docs/make_wire_figures.sh
+	MEANDER=$(CURDIR)/$(BUILD)/meander MESHES=$(CURDIR)/../shared/meshes docs/make_duotone_figures.sh
 
 clean:
 	rm -rf $(BUILD) out
