@@ -78,6 +78,15 @@ TEST(CliDuotone, GlbPassesTheKhronosValidatorPlainAndSubdivided) {
   }
 }
 
+TEST(CliDuotone, ABoundaryFallsBackToDualSimplestWithANote) {
+  const fs::path dir = output_dir();
+  ASSERT_EQ(run_cli({"generate", "grid", "-o", (dir / "grid.obj").string(), "--faces", "50"}).exit_code, 0);
+  const CommandResult r = run_cli({"duotone", (dir / "grid.obj").string(), "-o", (dir / "out.glb").string(), "--texture-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("grid.obj: note: the mesh has 20 boundary edges: Catmull-Clark quads would alternate colours"));
+  EXPECT_THAT(r.err, HasSubstr("quads (dual-simplest), 2 colour regions and 1 separating curve"));
+}
+
 TEST(CliDuotone, PictureOfTheTexturedSurface) {
   const fs::path dir = output_dir();
   ASSERT_EQ(run_cli({"generate", "torus", "-o", (dir / "torus.obj").string(), "--faces", "200"}).exit_code, 0);

@@ -8,6 +8,7 @@
 #include "meander/render.h"
 #include "meander/subdivide.h"
 
+#include <cstdio>
 #include <memory>
 
 namespace meander::cli {
@@ -51,7 +52,7 @@ void run_duotone(const DuotoneArgs& a) {
   log.restart();
   const Connectivity connectivity = input.connectivity.edge_start.empty() ? build_connectivity(input.mesh) : input.connectivity;
   const Duotone duotone = make_duotone(input.mesh, connectivity, options);
-  for (const std::string& note : duotone.notes) log.note(a.input + ": note: " + note);
+  for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
   TexturedMesh surface = duotone_surface(duotone, tiles);
   log.lap("tiles");
