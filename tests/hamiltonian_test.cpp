@@ -103,6 +103,28 @@ TEST(Cycle, QuadsAsIsOfASubdividedPretzel) {
   EXPECT_EQ(cycle.num_cycles(), 1);
 }
 
+// From given initial diagonals the construction only flips: a quad not on the flip
+// forest keeps its initial diagonal, and the loops still become one per component. The
+// flips never exceed the initial loops minus one.
+TEST(Cycle, StartsFromGivenDiagonals) {
+  for (const PolygonMesh& mesh : {genus_surface(2, 400), grid(200), moebius(80)}) {
+    const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+    std::vector<uint8_t> initial(quads.quads.size(), 0);
+    for (size_t q = 0; q < initial.size(); ++q) initial[q] = uint8_t(!quads.is_half(int32_t(q)) && (q * 2654435761u) % 7 < 3);
+    const TriangleCycle loops = triangle_loops(quads, initial);
+    EXPECT_GT(loops.num_cycles(), 1);
+    EXPECT_EQ(loops.diagonal, initial);
+    const TriangleCycle cycle = hamiltonian_cycle(quads, {.seed = 2, .initial_diagonal = initial});
+    EXPECT_EQ(verify_cycle(quads, cycle), "");
+    EXPECT_EQ(cycle.num_cycles(), 1);
+    int32_t flips = 0;
+    for (size_t q = 0; q < initial.size(); ++q) flips += cycle.diagonal[q] != initial[q];
+    EXPECT_EQ(flips, loops.num_cycles() - 1);
+  }
+  const QuadMesh quads = dual_simplest(sphere(50), build_connectivity(sphere(50)));
+  EXPECT_THROW(hamiltonian_cycle(quads, {.initial_diagonal = std::vector<uint8_t>(3, 0)}), UsageError);
+}
+
 // A quad mesh with boundary cannot carry Taubin's cycle: refused, not looped forever.
 TEST(Cycle, QuadMeshWithBoundaryIsRefused) {
   const PolygonMesh band = moebius(60);
