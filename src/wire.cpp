@@ -128,6 +128,14 @@ void connect_rings(PolygonMesh& mesh, int32_t first, int32_t rings, int32_t widt
   }
 }
 
+// The surface normal at the control point of triangle i (of cycle c), weighted like the
+// point itself: (2 apex + p + n) / 4.
+Vec3 control_normal(const QuadMesh& quads, const TriangleCycle& cycle, const Ladder& ladder, int32_t c, size_t i) {
+  const auto [p, apex, n] = cycle_triangle(quads, cycle.order[i]);
+  const Vec3 sum = surface_normal(ladder, c, i, apex) * 2.0f + surface_normal(ladder, c, i, p) + surface_normal(ladder, c, i, n);
+  return norm(sum) > 0 ? normalized(sum) : ladder.up[i];
+}
+
 // The swept section's frame at every point of the smooth curve: computed once, so that
 // --radius auto can try several radii on it.
 struct Sweep {
@@ -150,16 +158,11 @@ Sweep sweep_frames(const QuadMesh& quads, const TriangleCycle& cycle, const Curv
     const size_t first_triangle = size_t(cycle.cycle_start[size_t(c)]);
     const int32_t triangles = cycle.cycle_start[size_t(c) + 1] - cycle.cycle_start[size_t(c)];
     // The surface normal at each control point, weighted like the point itself.
-    std::vector<Vec3> control_normal(static_cast<size_t>(triangles));
-    for (int32_t t = 0; t < triangles; ++t) {
-      const size_t i = first_triangle + size_t(t);
-      const auto [p, apex, n] = cycle_triangle(quads, cycle.order[i]);
-      const Vec3 sum = surface_normal(ladder, c, i, apex) * 2.0f + surface_normal(ladder, c, i, p) + surface_normal(ladder, c, i, n);
-      control_normal[size_t(t)] = norm(sum) > 0 ? normalized(sum) : ladder.up[i];
-    }
+    std::vector<Vec3> normal_at(static_cast<size_t>(triangles));
+    for (int32_t t = 0; t < triangles; ++t) normal_at[size_t(t)] = control_normal(quads, cycle, ladder, c, first_triangle + size_t(t));
     auto up = [&](int32_t control) {
       const int32_t wrapped = (control % triangles + triangles) % triangles;
-      const Vec3 u = control_normal[size_t(wrapped)];
+      const Vec3 u = normal_at[size_t(wrapped)];
       return ladder.mobius[size_t(c)] && wrapped != control ? u * -1.0f : u;
     };
     Vec3 tangent{}, normal{};
@@ -439,7 +442,7 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // The bilinear formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's
   // rotation order; corner v_mn is p_(1-m)(1-n) when s = t = 1.
   const size_t triangles = cycle.order.size();
-  std::vector<Vec3> left(2 * triangles), right(2 * triangles), left_normal(2 * triangles), right_normal(2 * triangles);
+  std::vector<Vec3> left(2 * triangles), right(2 * triangles), up(2 * triangles);
   const float w0s = float((1 - options.s) / 2), w1s = float((1 + options.s) / 2);
   const float w0t = float((1 - options.t) / 2), w1t = float((1 + options.t) / 2);
   // Corners on the p side, then the n side, each as (apex rail, other rail).
@@ -449,32 +452,23 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   };
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const size_t first = size_t(cycle.cycle_start[size_t(c)]), count = size_t(cycle.cycle_start[size_t(c) + 1]) - first;
-    const float closing = ladder.mobius[size_t(c)] ? -1.0f : 1.0f;
     for (size_t k = 0; k < count; ++k) {
       const size_t i = first + k;
       const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
       const auto corners = trapezoid(quads.positions[size_t(pi)], quads.positions[size_t(ai)], quads.positions[size_t(ni)]);
-      // Smooth normals interpolate like the corners. Otherwise the rungs either side of
-      // a quad side share the normal of its two triangles, so a connector is a prism.
-      auto normals = trapezoid(surface_normal(ladder, c, i, pi), surface_normal(ladder, c, i, ai), surface_normal(ladder, c, i, ni));
-      if (!ladder.coherent[size_t(c)]) {
-        const Vec3 before = k == 0 ? ladder.up[first + count - 1] * closing : ladder.up[i - 1];
-        const Vec3 after = k + 1 == count ? ladder.up[first] * closing : ladder.up[i + 1];
-        const Vec3 entry = normalized(before + ladder.up[i]), exit = normalized(ladder.up[i] + after);
-        normals[size_t(!ladder.entry_is_p[i])] = {entry, entry};
-        normals[size_t(ladder.entry_is_p[i])] = {exit, exit};
-      }
+      // One normal for the whole trapezoid, so that its slab is a right prism: where a
+      // thin triangle turns the curve round (an apex angle near 180 degrees) the slab is
+      // a plate as thin as the triangle, and any difference between the normals of its
+      // corners tilts its walls into each other. Smooth (vertex) normals on a coherent
+      // cycle; otherwise the ladder's up side.
+      const Vec3 normal = ladder.coherent[size_t(c)] ? control_normal(quads, cycle, ladder, c, i) : ladder.up[i];
       const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
       for (size_t r = 0; r < 2; ++r) {
         const size_t side = r == 0 ? !entry_p : entry_p, rung = 2 * i + r;
         const auto [apex_corner, other_corner] = corners[side];
-        const auto [apex_normal, other_normal] = normals[side];
         left[rung] = apex_right ? other_corner : apex_corner;
         right[rung] = apex_right ? apex_corner : other_corner;
-        left_normal[rung] = normalized(apex_right ? other_normal : apex_normal);
-        right_normal[rung] = normalized(apex_right ? apex_normal : other_normal);
-        if (norm(left_normal[rung]) == 0) left_normal[rung] = ladder.up[i];
-        if (norm(right_normal[rung]) == 0) right_normal[rung] = ladder.up[i];
+        up[rung] = normal;
       }
     }
   }
@@ -495,8 +489,8 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     if (ribbon) {
       control.positions.insert(control.positions.end(), {left[r], right[r]});
     } else {
-      const Vec3 hl = left_normal[r] * half_thickness(r), hr = right_normal[r] * half_thickness(r);
-      control.positions.insert(control.positions.end(), {left[r] - hl, left[r] + hl, right[r] + hr, right[r] - hr});
+      const Vec3 h = up[r] * half_thickness(r);
+      control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
     }
   }
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {

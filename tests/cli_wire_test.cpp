@@ -61,10 +61,12 @@ TEST_P(CliWire, VariableWireIsPrintable) {
   const CommandResult r = run_cli({"wire", mesh.string(), "-o", (dir / "wire.ply").string(), "--method", "variable", "--levels", "1", "--report", (dir / "report.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Known limit: where a coarse face is long and thin, the dual-of-Simplest triangle
-  // (edge end, face centre, edge end) has an apex angle near 180 degrees, its bilinear
-  // trapezoid collapses onto a line, and the extruded slab runs into itself. These
-  // meshes have such faces; the report must still say so (CGAL agreeing).
-  const std::set<std::string> obtuse = {"beveledcube.obj", "genus3hexa1.obj", "bob_small.ply", "fandisk_quads.off", "spot_control_mesh.obj"};
+  // (edge end, face centre, edge end) has an apex angle near 180 degrees; the ribbon's
+  // rungs then lie along the curve, the (valid) ribbon folds back on itself there, and
+  // its extrusion into a slab runs into itself (docs/wires.md). These meshes have such
+  // faces; the report must still say so (CGAL agreeing). bob_small.ply left this list
+  // when each trapezoid's slab took one normal.
+  const std::set<std::string> obtuse = {"beveledcube.obj", "genus3hexa1.obj", "fandisk_quads.off", "spot_control_mesh.obj"};
   expect_printable_tori(dir / "wire.ply", dir / "report.json", cycles_of(mesh), !obtuse.contains(GetParam()));
 }
 
@@ -73,11 +75,17 @@ TEST_P(CliWire, RibbonsAreBands) {
   const auto mesh = shared_meshes() / GetParam();
   const auto dir = output_dir();
   for (const char* method : {"constant", "variable"}) {
-    const CommandResult r = run_cli({"wire", mesh.string(), "-o", (dir / "ribbon.obj").string(), "--method", method, "--shape", "ribbon", "--samples", "2", "--levels", "1"});
+    const CommandResult r = run_cli({"wire", mesh.string(), "-o", (dir / "ribbon.obj").string(), "--method", method, "--shape", "ribbon",
+                                     "--samples", "2", "--levels", "1", "--report", (dir / "ribbon.json").string()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const MeshReport ribbon = inspect(read_mesh(dir / "ribbon.obj"));
     EXPECT_EQ(ribbon.non_manifold_edges, 0) << method;
     EXPECT_EQ(ribbon.boundary_loops, 2 * cycles_of(mesh)) << method;
+    // The variable ribbon's control strip lies in the cycle's triangles, so it stays
+    // clear even where the slab of a wire folds; smoothing a fold on Spot's coarse
+    // control mesh makes a few smoothed triangles touch (docs/wires.md).
+    if (std::string(method) == "variable" && std::string(GetParam()) != "spot_control_mesh.obj")
+      EXPECT_FALSE(nlohmann::json::parse(read_file(dir / "ribbon.json"))["self_intersecting"].get<bool>());
   }
 }
 
