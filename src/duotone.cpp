@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 namespace meander {
@@ -282,7 +283,7 @@ struct LocalPoint {
 
 // Quad corner k sits at kCorner[k] of the unit square; the writers and the renderer fan a
 // quad from corner 0, so the surface is affine on the triangles (0,1,2) (s >= t) and
-// (0,2,3) (s <= t), and so are the texture coordinates.
+// (0,2,3) (s <= t), and so are the texture coordinates. A half quad is the second one.
 constexpr std::array<std::array<double, 2>, 4> kCorner{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 
 // The interior points of the tile's curve around corner a of the unit square, from the
@@ -320,7 +321,7 @@ Vec3 surface_point(const QuadMesh& m, int32_t q, double s, double t) {
   };
   const auto p0 = p(0), p2 = p(2), p3 = p(3);
   std::array<double, 3> x{};
-  if (s >= t) {
+  if (s > t) {
     const auto p1 = p(1);
     for (int i = 0; i < 3; ++i) x[size_t(i)] = p0[size_t(i)] + s * (p1[size_t(i)] - p0[size_t(i)]) + t * (p2[size_t(i)] - p1[size_t(i)]);
   } else {
@@ -329,14 +330,15 @@ Vec3 surface_point(const QuadMesh& m, int32_t q, double s, double t) {
   return {float(x[0]), float(x[1]), float(x[2])};
 }
 
-// The midpoint of side k of quad q, computed from its ends in a fixed order so that both
-// quads on the side get the same float point.
+// The midpoint of two points, the same float whichever comes first (the sum is exact
+// in double and commutes), so that both quads on a side get the same point.
+Vec3 midpoint(Vec3 a, Vec3 b) {
+  return {float(0.5 * (double(a.x) + b.x)), float(0.5 * (double(a.y) + b.y)), float(0.5 * (double(a.z) + b.z))};
+}
+
 Vec3 side_midpoint(const QuadMesh& m, int32_t q, int k) {
   const auto& c = m.quads[size_t(q)];
-  int32_t a = c[size_t(k)], b = c[size_t((k + 1) & 3)];
-  if (a > b) std::swap(a, b);
-  const Vec3 pa = m.positions[size_t(a)], pb = m.positions[size_t(b)];
-  return {float(0.5 * (double(pa.x) + pb.x)), float(0.5 * (double(pa.y) + pb.y)), float(0.5 * (double(pa.z) + pb.z))};
+  return midpoint(m.positions[size_t(c[size_t(k)])], m.positions[size_t(c[size_t((k + 1) & 3)])]);
 }
 
 // One name per quad side, shared by the two quads on it.
@@ -349,41 +351,6 @@ int32_t side_key(const QuadMesh& m, int32_t q, int k) {
 std::array<int, 2> apexes(const Duotone& d, int32_t q) {
   if (d.quads.is_half(q)) return {3, -1};
   return d.cycle.diagonal[size_t(q)] == 0 ? std::array<int, 2>{1, 3} : std::array<int, 2>{0, 2};
-}
-
-double orient(const LocalPoint& a, const LocalPoint& b, const LocalPoint& c) {
-  return (b.s - a.s) * (c.t - a.t) - (b.t - a.t) * (c.s - a.s);
-}
-
-// Triangulates a simple counter-clockwise polygon of a few points by ear clipping.
-template <typename Emit>
-void ear_clip(std::vector<int>& poly, const std::vector<LocalPoint>& pts, Emit&& emit) {
-  while (poly.size() > 3) {
-    const size_t n = poly.size();
-    bool clipped = false;
-    for (size_t i = 0; i < n && !clipped; ++i) {
-      const int a = poly[(i + n - 1) % n], b = poly[i], c = poly[(i + 1) % n];
-      if (orient(pts[size_t(a)], pts[size_t(b)], pts[size_t(c)]) <= 1e-12) continue;
-      bool blocked = false;
-      for (int v : poly) {
-        if (v == a || v == b || v == c) continue;
-        const LocalPoint& p = pts[size_t(v)];
-        if (orient(pts[size_t(a)], pts[size_t(b)], p) > 0 && orient(pts[size_t(b)], pts[size_t(c)], p) > 0 &&
-            orient(pts[size_t(c)], pts[size_t(a)], p) > 0) {
-          blocked = true;
-          break;
-        }
-      }
-      if (blocked) continue;
-      emit(a, b, c);
-      poly.erase(poly.begin() + std::ptrdiff_t(i));
-      clipped = true;
-    }
-    // Only collinear points left: nothing with area remains.
-    if (!clipped) return;
-  }
-  if (poly.size() == 3 && orient(pts[size_t(poly[0])], pts[size_t(poly[1])], pts[size_t(poly[2])]) > 1e-12)
-    emit(poly[0], poly[1], poly[2]);
 }
 
 } // namespace
@@ -494,8 +461,8 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
   for (int32_t q = 0; q < m.num_quads(); ++q) {
     const auto& c = m.quads[size_t(q)];
     const auto ap = apexes(d, q);
-    // Local points: corners 0..3, midpoints 4..7, then the interior curve points of each
-    // apex (from side a-1's midpoint towards side a's).
+    // Local points: corners 0..3, midpoints 4..7, the interior curve points of each apex
+    // (from side a-1's midpoint towards side a's), then the quad's centre.
     pts.assign(8, {});
     for (int k = 0; k < 4; ++k) {
       pts[size_t(k)] = {kCorner[size_t(k)][0], kCorner[size_t(k)][1]};
@@ -507,6 +474,8 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
       curve_first[size_t(j)] = int(pts.size());
       pts.insert(pts.end(), curve[size_t(ap[size_t(j)])].begin(), curve[size_t(ap[size_t(j)])].end());
     }
+    const int centre = int(pts.size());
+    pts.push_back({0.5, 0.5});
     for (auto& v : local_vertex) v.assign(pts.size(), -1);
     auto vertex = [&](int r, int p) -> int32_t {
       int32_t& id = local_vertex[size_t(r)][size_t(p)];
@@ -516,9 +485,11 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
                               : nullptr;
       if (shared && *shared >= 0) return id = *shared;
       id = out[size_t(r)].num_vertices();
-      out[size_t(r)].positions.push_back(p < 4   ? m.positions[size_t(c[size_t(p)])]
-                                         : p < 8 ? side_midpoint(m, q, p - 4)
-                                                 : surface_point(m, q, pts[size_t(p)].s, pts[size_t(p)].t));
+      // A half quad's centre halves its boundary edge.
+      out[size_t(r)].positions.push_back(p < 4                      ? m.positions[size_t(c[size_t(p)])]
+                                         : p < 8                    ? side_midpoint(m, q, p - 4)
+                                         : p == centre && m.is_half(q) ? midpoint(m.positions[size_t(c[0])], m.positions[size_t(c[2])])
+                                                                    : surface_point(m, q, pts[size_t(p)].s, pts[size_t(p)].t));
       if (shared) *shared = id;
       return id;
     };
@@ -530,8 +501,12 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
       for (int i = 0; i < count; ++i) piece.push_back(curve_first[size_t(j)] + (backwards ? count - 1 - i : i));
       if (backwards) piece.push_back(4 + ((a + 3) & 3));
     };
-    auto emit_piece = [&](int r) {
-      // Split at the fold: its points are corners 0 and 2 or curve points placed on it.
+    // Splits the piece at the fold (its points there are corners 0 and 2 or curve points
+    // placed on it) and fans each half: a corner piece from its corner (a quarter disc,
+    // or half of one, is convex), a band from the quad's centre, which lies on the fold
+    // between the band's two points there and sees all of the band's outline (every
+    // arc's tangent through it meets the arc at a side midpoint). Constant work per quad.
+    auto emit_piece = [&](int r, bool band) {
       for (int side = 0; side < 2; ++side) {
         if (m.is_half(q) && side == 0) continue;
         half.clear();
@@ -539,20 +514,31 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
           const double f = pts[size_t(p)].s - pts[size_t(p)].t;
           if (side == 0 ? f >= 0 : f <= 0) half.push_back(p);
         }
-        ear_clip(half, pts, [&](int a, int b, int cc) { out[size_t(r)].add_face({vertex(r, a), vertex(r, b), vertex(r, cc)}); });
+        const size_t n = half.size();
+        if (n < 3) continue;
+        auto face = [&](int a, int b, int cc) { out[size_t(r)].add_face({vertex(r, a), vertex(r, b), vertex(r, cc)}); };
+        if (!band) {
+          for (size_t i = 1; i + 1 < n; ++i) face(half[0], half[i], half[i + 1]);
+          continue;
+        }
+        size_t fold = 0; // half[fold] and the point after it lie on the fold
+        auto on_fold = [&](int p) { return pts[size_t(p)].s == pts[size_t(p)].t; };
+        while (fold < n && !(on_fold(half[fold]) && on_fold(half[(fold + 1) % n]))) ++fold;
+        if (fold == n) throw std::logic_error("duotone_regions: a band of quad " + std::to_string(q) + " misses the fold");
+        for (size_t i = 1; i < n; ++i) face(centre, half[(fold + i) % n], half[(fold + i + 1) % n]);
       }
     };
     for (int j = 0; j < 2 && ap[size_t(j)] >= 0; ++j) {
       const int a = ap[size_t(j)];
       piece.assign({a, 4 + a});
       add_curve(j, true);
-      emit_piece(d.color[size_t(c[size_t(a)])]);
+      emit_piece(d.color[size_t(c[size_t(a)])], false);
     }
     if (m.is_half(q)) {
       piece.assign({0, 2});
       add_curve(0, false);
       piece.push_back(4 + 3);
-      emit_piece(d.color[size_t(c[0])]);
+      emit_piece(d.color[size_t(c[0])], true);
     } else {
       const int a = ap[0];
       piece.assign({(a + 1) & 3});
@@ -561,7 +547,7 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
       piece.push_back((a + 3) & 3);
       add_curve(0, false);
       piece.push_back(4 + a);
-      emit_piece(d.color[size_t(c[size_t((a + 1) & 3)])]);
+      emit_piece(d.color[size_t(c[size_t((a + 1) & 3)])], true);
     }
   }
   return out;

@@ -354,8 +354,15 @@ TEST(Duotone, RegionsAreManifoldsCutExactlyAlongTheCurve) {
         for (size_t i = 0; i < p.size(); ++i) curve_segments.insert(segment(p[i], p[(i + 1) % p.size()]));
         EXPECT_TRUE(curve.closed(k));
       }
-      // The surface's own boundary (half quads' diagonals) lies in the yellow region.
-      std::set<Segment> surface_boundary = boundary_segments(duotone_surface(d, {.texture_size = 64}).mesh);
+      // The surface's own boundary (half quads' diagonals) lies in the yellow region, each
+      // edge in two halves at its midpoint.
+      std::set<Segment> surface_boundary;
+      for (const Segment& e : boundary_segments(duotone_surface(d, {.texture_size = 64}).mesh)) {
+        const Vec3 a{e[0], e[1], e[2]}, b{e[3], e[4], e[5]};
+        const Vec3 mid{float(0.5 * (double(a.x) + b.x)), float(0.5 * (double(a.y) + b.y)), float(0.5 * (double(a.z) + b.z))};
+        surface_boundary.insert(segment(a, mid));
+        surface_boundary.insert(segment(mid, b));
+      }
       double regions_area = 0;
       for (int r = 0; r < 2; ++r) {
         const MeshReport report = inspect(regions[size_t(r)]);

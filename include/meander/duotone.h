@@ -133,7 +133,8 @@ Polylines separating_curves(const Duotone& duotone, TileStyle style);
 // tile piece split at the quad's corner 0-2 fold (where the writers fan it) and mapped
 // onto the surface, vertices shared across pieces and quads. regions[k] has colour k.
 // Their areas sum to the quad surface's area and their boundary edges are the curve's
-// segments (plus the surface's own boundary edges, all yellow). O(quads).
+// segments, plus the surface's own boundary edges, all yellow, each in two halves at its
+// midpoint (where the fan of its half quad's band starts). O(quads).
 std::array<PolygonMesh, 2> duotone_regions(const Duotone& duotone, TileStyle style);
 
 } // namespace meander
