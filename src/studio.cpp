@@ -6,6 +6,7 @@
 #include "meander/io.h"
 #include "meander/render.h"
 #include "meander/shapes.h"
+#include "meander/subdivide.h"
 #include "meander/wire.h"
 
 #include "io/image_codec.h"
@@ -108,6 +109,7 @@ std::string mode_name(StudioMode mode) {
   case StudioMode::constant_ribbon: return "constant-ribbon";
   case StudioMode::variable_wire: return "variable-wire";
   case StudioMode::variable_ribbon: return "variable-ribbon";
+  case StudioMode::duotone: return "duotone";
   }
   return "curve";
 }
@@ -138,10 +140,10 @@ bool is_wire(StudioMode mode) { return mode == StudioMode::constant_wire || mode
 
 StudioMode parse_studio_mode(std::string_view name) {
   for (StudioMode mode : {StudioMode::curve, StudioMode::constant_wire, StudioMode::constant_ribbon,
-                          StudioMode::variable_wire, StudioMode::variable_ribbon})
+                          StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::duotone})
     if (name == mode_name(mode)) return mode;
   throw UsageError("unknown mode '" + std::string(name.substr(0, 40)) +
-                   "' (expected curve, constant-wire, constant-ribbon, variable-wire or variable-ribbon)");
+                   "' (expected curve, constant-wire, constant-ribbon, variable-wire, variable-ribbon or duotone)");
 }
 
 MakeRequest parse_make_request(std::string_view body) {
@@ -189,6 +191,16 @@ MakeRequest parse_make_request(std::string_view body) {
       p.thickness = number_in(value, "thickness", 0, INFINITY);
     } else if (key == "levels") {
       p.levels = integer_in(value, "levels", 0, 6);
+    } else if (key == "rule") {
+      p.rule = named("rule", [&] { return parse_duotone_rule(text(value, "rule")); });
+    } else if (key == "colors") {
+      p.tiles.colors = named("colors", [&] { return parse_duotone_colors(text(value, "colors")); });
+    } else if (key == "tiles") {
+      p.tiles.style = named("tiles", [&] { return parse_tile_style(text(value, "tiles")); });
+    } else if (key == "texture_size") {
+      p.tiles.texture_size = integer_in(value, "texture_size", 64, 8192);
+    } else if (key == "subdivide") {
+      p.subdivide = integer_in(value, "subdivide", 0, 5);
     } else {
       throw UsageError(describe(json(key)) + ": unknown parameter");
     }
@@ -220,9 +232,27 @@ StudioSurface demo_surface() {
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params) {
   const auto start = std::chrono::steady_clock::now();
   StudioResult result{.params = params};
+  const StudioMode mode = params.mode;
+  if (mode == StudioMode::duotone) {
+    const Connectivity& given = surface.repaired.connectivity;
+    const Connectivity connectivity = given.edge_start.empty() ? build_connectivity(surface.repaired.mesh) : given;
+    Duotone duotone = make_duotone(surface.repaired.mesh, connectivity,
+                                   {.quadrangulation = params.job.quadrangulation, .rule = params.rule,
+                                    .tree = params.job.cycle.tree, .seed = params.job.cycle.seed});
+    TexturedMesh painted = duotone_surface(duotone, params.tiles);
+    if (params.subdivide > 0) painted = subdivide(painted, {.levels = params.subdivide});
+    result.curve.curves = separating_curves(duotone, params.tiles.style);
+    result.curve_length = total_length(result.curve.curves);
+    result.curve.quads = std::move(duotone.quads);
+    result.curve.cycle = std::move(duotone.cycle);
+    result.mesh = std::move(painted.mesh);
+    result.appearance = std::move(painted.appearance);
+    for (int32_t f = 0; f < result.mesh.num_faces(); ++f) result.triangles += std::max(0, result.mesh.face_size(f) - 2);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
   result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, params.job);
   result.curve_length = total_length(result.curve.curves);
-  const StudioMode mode = params.mode;
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
   if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
     ConstantWireOptions options{.shape = shape, .radius = params.radius, .sides = params.sides, .curve = params.job.curve};
@@ -256,7 +286,10 @@ std::string studio_stats_json(const StudioResult& result) {
                 {"curve_points", curves.points.size()},
                 {"curve_length", result.curve_length},
                 {"seconds", result.seconds}};
-  if (result.params.mode != StudioMode::curve) {
+  if (result.params.mode == StudioMode::duotone) {
+    stats["quads"] = result.curve.quads.num_quads();
+    stats["faces"] = result.mesh.num_faces();
+  } else if (result.params.mode != StudioMode::curve) {
     const PrintabilityReport& r = result.report;
     stats["vertices"] = r.vertices;
     stats["faces"] = r.faces;
@@ -272,16 +305,18 @@ std::string studio_stats_json(const StudioResult& result) {
 
 StudioFile parse_studio_file(std::string_view name) {
   static constexpr std::pair<std::string_view, StudioFile> table[] = {
-      {"surface.bin", StudioFile::surface}, {"view.bin", StudioFile::view},      {"result.stl", StudioFile::stl},
+      {"surface.bin", StudioFile::surface}, {"view.bin", StudioFile::view},      {"texture.png", StudioFile::texture},
+      {"result.stl", StudioFile::stl},
       {"result.3mf", StudioFile::threemf},  {"result.glb", StudioFile::glb},     {"result.zip", StudioFile::obj_zip},
       {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png}};
   for (const auto& [file_name, file] : table)
     if (name == file_name) return file;
-  throw UsageError("no result file of that name (expected surface.bin, view.bin, result.stl, result.3mf, result.glb, "
-                   "result.zip, curve.svg or render.png)");
+  throw UsageError("no result file of that name (expected surface.bin, view.bin, texture.png, result.stl, result.3mf, "
+                   "result.glb, result.zip, curve.svg or render.png)");
 }
 
-std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves) {
+std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
+  const bool textured = !appearance.texcoords.empty();
   int64_t triangles = 0, segments = 0;
   for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += std::max(0, mesh.face_size(f) - 2);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
@@ -289,11 +324,12 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves) 
     const bool open = !curves.open.empty() && curves.open[k];
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
-  const int64_t vertices = int64_t(mesh.positions.size() + curves.points.size());
+  const int64_t mesh_vertices = textured ? 3 * triangles : int64_t(mesh.positions.size());
+  const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
   if (vertices > UINT32_MAX || triangles > UINT32_MAX || segments > UINT32_MAX)
     throw UsageError("result too large for the view (over 2^32 elements)");
   std::string out;
-  out.reserve(16 + size_t(vertices) * 12 + size_t(triangles) * 12 + size_t(segments) * 8);
+  out.reserve(20 + size_t(vertices) * 20 + size_t(triangles) * 12 + size_t(segments) * 8);
   auto put = [&out](auto value) {
     char bytes[sizeof(value)];
     io::store_little_endian(bytes, value);
@@ -303,13 +339,30 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves) 
   put(uint32_t(vertices));
   put(uint32_t(triangles));
   put(uint32_t(segments));
-  for (const Vec3& p : mesh.positions) put(p.x), put(p.y), put(p.z);
-  for (const Vec3& p : curves.points) put(p.x), put(p.y), put(p.z);
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-    const auto face = mesh.face(f);
-    for (size_t i = 1; i + 1 < face.size(); ++i) put(uint32_t(face[0])), put(uint32_t(face[i])), put(uint32_t(face[i + 1]));
+  put(uint32_t(textured));
+  // The fan of face f: corners (start, start + i, start + i + 1).
+  auto for_each_fan_corner = [&mesh](auto visit) {
+    for (int32_t f = 0; f < mesh.num_faces(); ++f)
+      for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
+        for (int32_t c : {0, i, i + 1}) visit(mesh.face_start[f] + c);
+  };
+  if (textured) {
+    for_each_fan_corner([&](int32_t c) {
+      const Vec3 p = mesh.positions[size_t(mesh.face_vertices[size_t(c)])];
+      put(p.x), put(p.y), put(p.z);
+    });
+  } else {
+    for (const Vec3& p : mesh.positions) put(p.x), put(p.y), put(p.z);
   }
-  const uint32_t base = uint32_t(mesh.positions.size());
+  for (const Vec3& p : curves.points) put(p.x), put(p.y), put(p.z);
+  if (textured) {
+    for_each_fan_corner([&](int32_t c) { put(appearance.texcoords[size_t(c)].u), put(appearance.texcoords[size_t(c)].v); });
+    for (size_t k = 0; k < curves.points.size(); ++k) put(0.0f), put(0.0f);
+    for (uint32_t v = 0; v < uint32_t(mesh_vertices); ++v) put(v);
+  } else {
+    for_each_fan_corner([&](int32_t c) { put(uint32_t(mesh.face_vertices[size_t(c)])); });
+  }
+  const uint32_t base = uint32_t(mesh_vertices);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t begin = curves.start[k], end = curves.start[k + 1];
     if (end - begin < 2) continue;
@@ -323,6 +376,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
                                const fs::path& scratch, const std::string& stem) {
   const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode);
   const bool curve_mode = result.params.mode == StudioMode::curve;
+  const bool textured = !result.appearance.materials.empty();
   auto written_mesh = [&](const char* extension, const char* type) {
     if (curve_mode)
       throw UsageError(std::string("curve mode makes no mesh to save as ") + extension +
@@ -335,11 +389,22 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   case StudioFile::surface:
     return {studio_view_bytes(surface.repaired.mesh, {}), "application/octet-stream", "surface.bin"};
   case StudioFile::view:
-    return {curve_mode ? studio_view_bytes({}, result.curve.curves) : studio_view_bytes(result.mesh, {}),
+    return {curve_mode ? studio_view_bytes({}, result.curve.curves) : studio_view_bytes(result.mesh, {}, result.appearance),
             "application/octet-stream", "view.bin"};
+  case StudioFile::texture: {
+    if (!textured || result.appearance.materials[0].texture.empty())
+      throw UsageError("texture.png: only a duotone result has a texture");
+    const Texture& t = result.appearance.materials[0].texture;
+    return {io::encode_png(t.rgba.data(), t.width, t.height, 4, "texture.png"), "image/png", base + "_texture.png"};
+  }
   case StudioFile::stl: return written_mesh(".stl", "model/stl");
   case StudioFile::threemf: return written_mesh(".3mf", "model/3mf");
-  case StudioFile::glb: return written_mesh(".glb", "model/gltf-binary");
+  case StudioFile::glb: {
+    if (!textured) return written_mesh(".glb", "model/gltf-binary");
+    const fs::path path = scratch / (stem + ".glb");
+    write_textured_mesh({.mesh = result.mesh, .appearance = result.appearance}, path);
+    return {read_and_remove(path), "model/gltf-binary", base + ".glb"};
+  }
   case StudioFile::obj_zip: {
     // The writers name the MTL and textures after the OBJ, so each zip gets a folder.
     const fs::path folder = scratch / stem;
@@ -349,7 +414,8 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
       if (curve_mode) {
         write_polylines(result.curve.curves, folder / (base + ".obj"));
       } else {
-        Appearance appearance{.materials = {{.name = "meander", .base_color = {0.72f, 0.45f, 0.2f}}}};
+        Appearance appearance = textured ? result.appearance
+                                         : Appearance{.materials = {{.name = "meander", .base_color = {0.72f, 0.45f, 0.2f}}}};
         write_textured_mesh({.mesh = result.mesh, .appearance = std::move(appearance)}, folder / (base + ".obj"));
       }
       std::vector<fs::path> paths(fs::directory_iterator(folder), fs::directory_iterator{});
@@ -372,15 +438,16 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     // the curve and of a wire; a ribbon lies in it and is drawn alone.
     Scene scene;
     const StudioMode mode = result.params.mode;
-    if (!curve_mode) scene.meshes.push_back({.mesh = result.mesh, .color = {0.72f, 0.45f, 0.2f}});
+    if (textured) scene.meshes.push_back({.mesh = result.mesh, .appearance = result.appearance});
+    else if (!curve_mode) scene.meshes.push_back({.mesh = result.mesh, .color = {0.72f, 0.45f, 0.2f}});
     else scene.curves.push_back({.curves = result.curve.curves});
     if (curve_mode || is_wire(mode))
       scene.meshes.push_back({.mesh = cycle_triangles(result.curve.quads, result.curve.cycle),
                               .color = {0.82f, 0.82f, 0.82f},
                               .style = curve_mode ? MeshStyle::hidden : MeshStyle::faint});
-    const Image image = render(scene, {.width = 1200, .height = 900, .samples = 4});
-    return {io::encode_png(image.rgba.data(), image.width, image.height, image.has_alpha ? 4 : 3, base + ".png"),
-            "image/png", base + ".png"};
+    const fs::path path = scratch / (stem + ".png");
+    write_png(render(scene, {.width = 1200, .height = 900, .samples = 4}), path);
+    return {read_and_remove(path), "image/png", base + ".png"};
   }
   }
   throw UsageError("unknown result file");

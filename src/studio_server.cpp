@@ -138,7 +138,7 @@ struct StudioServer::Impl {
     http.Get("/api/info", [this](const httplib::Request&, httplib::Response& res) {
       send_json(res, 200,
                 {{"max_upload", options.max_upload},
-                 {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon"}},
+                 {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}},
                  {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}}});
     });
 

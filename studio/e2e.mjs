@@ -2,8 +2,8 @@
 //   node e2e.mjs MEANDER_BINARY OUTPUT_FOLDER
 // Starts `meander serve` on a free port, loads the demo model, switches to a variable
 // wire, moves the s slider and checks the wire in the scene changed, downloads the STL
-// and checks it is a valid binary STL, shows a bad file's error, and saves a screenshot
-// to OUTPUT_FOLDER/studio_e2e.png. Exits 0 with a message, without testing, only when
+// and checks it is a valid binary STL, shows a duotone, shows a bad file's error, and saves
+// screenshots to OUTPUT_FOLDER/studio_e2e.png and studio_e2e_duotone.png. Exits 0 with a message, without testing, only when
 // Chromium is not installed.
 import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
@@ -82,7 +82,8 @@ try {
     s.dispatchEvent(new Event('input', { bubbles: true }));
   });
   await settled(before.revision);
-  const after = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
+  const after = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats,
+    ms: window.studio.state.lastUpdateMs }));
   const moved = Math.max(...[0, 1, 2].map((i) => Math.max(Math.abs(after.info.min[i] - before.info.min[i]),
     Math.abs(after.info.max[i] - before.info.max[i]))));
   check(moved > 1e-4 || after.info.vertices !== before.info.vertices,
@@ -101,13 +102,24 @@ try {
 
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e.png') });
 
+  // Duotone: a textured surface in the scene (texture size kept small for speed).
+  const wireRevision = await page.evaluate(() => window.studio.state.revision);
+  await page.selectOption('#mode', 'duotone');
+  await page.selectOption('#texture-size', '256');
+  await settled(wireRevision);
+  await page.waitForFunction(() => window.studio.state.stats?.mode === 'duotone' && !window.studio.state.busy &&
+    !window.studio.state.pending, null, { timeout: 120000 });
+  const duotone = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
+  check(duotone.info.textured && duotone.stats.curves === 1, 'duotone shows a textured surface with one separating curve');
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_duotone.png') });
+
   // A bad file: the page shows the reader's precise message and the server keeps going.
   await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });
   await page.waitForSelector('#error:not([hidden])', { timeout: 30000 });
   const message = await page.textContent('#error');
   check(/^bad\.obj:3: /.test(message), `unexpected error message for a bad file: ${message}`);
   check(problems.length === 0, `page errors: ${problems.join('; ')}`);
-  console.log(`studio e2e: passed (wire of ${after.stats.triangles} triangles, update ${Math.round(after.stats.seconds * 1000)} ms on the server, ${Math.round(await page.evaluate(() => window.studio.state.lastUpdateMs))} ms end to end; ` +
+  console.log(`studio e2e: passed (wire of ${after.stats.triangles} triangles, update ${Math.round(after.stats.seconds * 1000)} ms on the server, ${Math.round(after.ms)} ms end to end; ` +
     `screenshot ${path.join(outputFolder, 'studio_e2e.png')})`);
 } finally {
   await browser.close();

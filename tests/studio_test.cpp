@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 
 namespace meander {
 namespace {
@@ -40,6 +41,14 @@ TEST(Studio, MakeRequestTakesEveryCliParameter) {
   EXPECT_EQ(r.params.thickness, 0.02);
   EXPECT_EQ(r.params.levels, 0);
   EXPECT_EQ(parse_make_request(R"({"session": "x", "radius": "auto"})").params.radius, 0);
+  const MakeRequest d = parse_make_request(R"({"session": "x", "mode": "duotone", "rule": "flip", "colors": "red,#00ff00",
+      "tiles": "dots", "texture_size": 256, "subdivide": 2})");
+  EXPECT_EQ(d.params.mode, StudioMode::duotone);
+  EXPECT_EQ(d.params.rule, DuotoneRule::flip);
+  EXPECT_EQ(d.params.tiles.style, TileStyle::dots);
+  EXPECT_EQ(d.params.tiles.colors[1], (Color8{0, 255, 0}));
+  EXPECT_EQ(d.params.tiles.texture_size, 256);
+  EXPECT_EQ(d.params.subdivide, 2);
 }
 
 TEST(Studio, MakeRequestRefusalsNameTheKey) {
@@ -51,6 +60,8 @@ TEST(Studio, MakeRequestRefusalsNameTheKey) {
   EXPECT_EQ(message_of(R"({"session": "x", "colour": "red"})"), "\"colour\": unknown parameter");
   EXPECT_NE(message_of(R"({"session": "x", "tree": "oak"})").find("tree: "), std::string::npos);
   EXPECT_NE(message_of(R"({"session": "x", "mode": "duo"})").find("mode: unknown mode 'duo'"), std::string::npos);
+  EXPECT_NE(message_of(R"({"session": "x", "colors": "red"})").find("colors: "), std::string::npos);
+  EXPECT_EQ(message_of(R"({"session": "x", "subdivide": 6})"), "subdivide: expected an integer in [0, 5], got 6");
   EXPECT_EQ(message_of(R"({"s": 0.5})"), "session: missing (upload a mesh first: POST /api/mesh)");
   EXPECT_EQ(message_of("{\"session\": "), "request body is not valid JSON");
   EXPECT_EQ(message_of("[1, 2]"), "request body: expected a JSON object, got [1,2]");
@@ -93,7 +104,7 @@ TEST(Studio, GltfUploadReferringToFilesIsRefused) {
 
 TEST(Studio, EveryModeMakesWhatTheCliMakes) {
   const StudioSurface surface = demo_surface();
-  for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon"}) {
+  for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {
     SCOPED_TRACE(mode);
     StudioParams params{.mode = parse_studio_mode(mode), .levels = 0};
     const StudioResult r = make_studio_result(surface, params);
@@ -101,6 +112,11 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
     EXPECT_GT(r.curve_length, 0);
     if (params.mode == StudioMode::curve) {
       EXPECT_EQ(r.mesh.num_faces(), 0);
+      continue;
+    }
+    if (params.mode == StudioMode::duotone) { // as `meander duotone`: textured quads, one separating curve
+      EXPECT_EQ(r.mesh.num_faces(), r.curve.quads.num_quads());
+      EXPECT_EQ(r.appearance.texcoords.size(), r.mesh.face_vertices.size());
       continue;
     }
     EXPECT_GT(r.mesh.num_faces(), 0);
@@ -118,17 +134,29 @@ TEST(Studio, ViewBytesHoldTheTrianglesAndSegments) {
   loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
   loop.start = {0, 3};
   const std::string bytes = studio_view_bytes(quad, loop);
-  ASSERT_EQ(bytes.size(), 16u + 7 * 12 + 2 * 12 + 3 * 8);
+  ASSERT_EQ(bytes.size(), 20u + 7 * 12 + 2 * 12 + 3 * 8);
   EXPECT_EQ(bytes.substr(0, 4), "MNDR");
-  uint32_t counts[3];
-  std::memcpy(counts, bytes.data() + 4, 12);
+  uint32_t counts[4];
+  std::memcpy(counts, bytes.data() + 4, 16);
   EXPECT_EQ(counts[0], 7u);
   EXPECT_EQ(counts[1], 2u);
   EXPECT_EQ(counts[2], 3u); // a closed loop of 3 points has 3 segments
+  EXPECT_EQ(counts[3], 0u); // no texture coordinates
   uint32_t last_segment[2];
   std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
   EXPECT_EQ(last_segment[0], 6u); // 4 mesh vertices first, then the curve's: closes 6 -> 4
   EXPECT_EQ(last_segment[1], 4u);
+  // With texture coordinates every triangle corner is a vertex of its own, its (u, v) after the positions.
+  Appearance appearance{.materials = {{.name = "m"}}, .texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  const std::string textured = studio_view_bytes(quad, {}, appearance);
+  ASSERT_EQ(textured.size(), 20u + 6 * 12 + 6 * 8 + 2 * 12);
+  std::memcpy(counts, textured.data() + 4, 16);
+  EXPECT_EQ(counts[0], 6u);
+  EXPECT_EQ(counts[3], 1u);
+  float uv[12];
+  std::memcpy(uv, textured.data() + 20 + 6 * 12, sizeof uv);
+  EXPECT_EQ(uv[4], 1.0f); // corner 2 of the first triangle (0, 1, 2) is (1, 1)
+  EXPECT_EQ(uv[5], 1.0f);
 }
 
 TEST(Studio, ResultFilesHaveFixedNames) {
@@ -151,9 +179,30 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
   EXPECT_EQ(zip.bytes.substr(0, 4), std::string("PK\3\4", 4));
   EXPECT_NE(zip.bytes.find("pretzel_variable-wire.mtl"), std::string::npos);
   EXPECT_NE(zip.bytes.find("mtllib pretzel_variable-wire.mtl"), std::string::npos); // stored, so readable
-  EXPECT_EQ(studio_download(surface, wire, StudioFile::png, scratch, "c").bytes.substr(1, 3), "PNG");
+  // The render as `meander wire --png` draws it: 1200 x 900, the copper wire covering a good part of it.
+  // Beside the scratch folder, which must be left empty.
+  const std::filesystem::path png = scratch.parent_path() / (scratch.filename().string() + "_render.png");
+  {
+    const std::string bytes = studio_download(surface, wire, StudioFile::png, scratch, "c").bytes;
+    std::ofstream(png, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  }
+  const Texture picture = read_texture(png);
+  EXPECT_EQ(picture.width, 1200);
+  EXPECT_EQ(picture.height, 900);
+  size_t copper = 0;
+  for (size_t i = 0; i + 3 < picture.rgba.size(); i += 4)
+    copper += picture.rgba[i] > picture.rgba[i + 2] + 60 && picture.rgba[i] > picture.rgba[i + 1];
+  EXPECT_GT(copper, picture.rgba.size() / 4 / 20);
   // Nothing is left behind in the scratch folder.
   EXPECT_TRUE(std::filesystem::is_empty(scratch));
+  // A duotone's zip carries its texture, as `meander duotone -o x.obj` writes it.
+  StudioParams duotone{.mode = StudioMode::duotone};
+  duotone.tiles.texture_size = 64;
+  const StudioResult painted = make_studio_result(surface, duotone);
+  const StudioDownload painted_zip = studio_download(surface, painted, StudioFile::obj_zip, scratch, "f");
+  EXPECT_NE(painted_zip.bytes.find("pretzel_duotone_texture.png"), std::string::npos);
+  EXPECT_EQ(studio_download(surface, painted, StudioFile::texture, scratch, "g").bytes.substr(1, 3), "PNG");
+  EXPECT_THROW(studio_download(surface, wire, StudioFile::texture, scratch, "h"), UsageError);
   const StudioResult curve = make_studio_result(surface, {});
   EXPECT_THROW(studio_download(surface, curve, StudioFile::glb, scratch, "d"), UsageError);
   EXPECT_EQ(studio_download(surface, curve, StudioFile::svg, scratch, "e").bytes.substr(0, 4), "<svg");

@@ -7,6 +7,7 @@
 
 #include "meander/check.h"
 #include "meander/curve.h"
+#include "meander/duotone.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
 
@@ -22,11 +23,12 @@
 namespace meander {
 
 // What the studio makes, as the page's mode menu lists them. The wire modes are
-// `meander wire --method constant|variable --shape wire|ribbon`.
-enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, variable_ribbon };
+// `meander wire --method constant|variable --shape wire|ribbon`, duotone is `meander
+// duotone` (duotone.h).
+enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, variable_ribbon, duotone };
 
 // Parses "curve" | "constant-wire" | "constant-ribbon" | "variable-wire" |
-// "variable-ribbon"; throws UsageError otherwise.
+// "variable-ribbon" | "duotone"; throws UsageError otherwise.
 StudioMode parse_studio_mode(std::string_view name);
 
 // Every parameter of the CLI's curve and wire commands, with the CLI's defaults and ranges.
@@ -38,6 +40,11 @@ struct StudioParams {
   double s = 0.6, t = 0.6;
   double thickness = 0; // variable wire, >= 0 (0: half the local ribbon width)
   int levels = 2;       // variable modes: 0..6
+  // Duotone (quad, tree and seed above; the page switches quad to catmull-clark, the
+  // duotone command's default, when it enters this mode).
+  DuotoneRule rule = DuotoneRule::tree;
+  TileOptions tiles;
+  int subdivide = 0; // 0..5
 };
 
 struct MakeRequest {
@@ -47,7 +54,8 @@ struct MakeRequest {
 
 // Parses the body of POST /api/make: a JSON object with "session" (required) and any
 // of "mode", "quad", "tree", "seed", "smooth", "samples", "radius" (number or "auto"),
-// "sides", "s", "t", "thickness", "levels"; absent keys keep their defaults. Throws
+// "sides", "s", "t", "thickness", "levels", and for duotone "rule", "colors" ("C1,C2"
+// as --colors), "tiles", "texture_size", "subdivide"; absent keys keep their defaults. Throws
 // UsageError naming the key and what it expects ("s: expected a number in [0, 1], got
 // 1.5", "colour: unknown parameter") for anything else: malformed JSON, a value of the
 // wrong type or out of the CLI's range, an unknown key. Never throws anything else on
@@ -75,23 +83,28 @@ StudioSurface demo_surface();
 
 struct StudioResult {
   StudioParams params;
-  CurveResult curve;     // quads, cycle and smooth curve (every mode)
+  // Quads, cycle and smooth curve; in duotone mode the duotone's quads and diagonals
+  // and its separating curves.
+  CurveResult curve;
   double curve_length = 0;
-  PolygonMesh mesh;      // the wire or ribbon; empty in curve mode
+  PolygonMesh mesh;        // the wire, ribbon or duotone surface; empty in curve mode
+  Appearance appearance;   // duotone: the tile atlas and texture coordinates of `mesh`
   double radius = 0;     // constant modes: the radius used (auto resolved)
-  PrintabilityReport report; // of `mesh` (self-intersections, no thickness); unset in curve mode
+  PrintabilityReport report; // of a wire or ribbon (self-intersections, no thickness)
   int64_t triangles = 0; // of the cycle (curve mode) or the mesh, after fanning
   double seconds = 0;    // making it, report included
 };
 
 // Runs the job on a copy of the surface: make_curve, then constant_wire (auto_wire_radius
 // when radius is 0) or variable_wire, then check_printability without the thickness rays
-// (the live view's stats). Throws what those throw; TopologyError when no radius avoids
-// a self-intersection, as `meander wire`.
+// (the live view's stats); or make_duotone, duotone_surface (subdivided if asked) and
+// separating_curves. Throws what those throw; TopologyError when no radius avoids a
+// self-intersection, as `meander wire`.
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params);
 
 // The stats beside the view as JSON: mode, triangles, curves, curve_length, seconds,
-// and for meshes vertices, faces, watertight, self_intersecting, volume, radius.
+// for wires and ribbons vertices, faces, watertight, self_intersecting, volume,
+// printable, radius, and for duotone quads, faces, notes.
 std::string studio_stats_json(const StudioResult& result);
 
 // The files a result can be fetched as (GET /api/result/SESSION/NAME). The names are a
@@ -99,17 +112,21 @@ std::string studio_stats_json(const StudioResult& result);
 enum class StudioFile {
   surface, // the surface as the view draws it (binary, see studio_view_bytes)
   view,    // the result as the view draws it
+  texture, // duotone: the tile atlas as PNG
   stl, threemf, glb, obj_zip, svg, png,
 };
 
-// "surface.bin", "view.bin", "result.stl", "result.3mf", "result.glb", "result.zip",
-// "curve.svg", "render.png"; throws UsageError for any other name.
+// "surface.bin", "view.bin", "texture.png", "result.stl", "result.3mf", "result.glb",
+// "result.zip", "curve.svg", "render.png"; throws UsageError for any other name.
 StudioFile parse_studio_file(std::string_view name);
 
 // Geometry for the page's three.js view, little-endian: "MNDR", uint32 vertex count V,
-// triangle count T, segment count S; then V*3 float32 positions, T*3 uint32 vertex
-// indices (polygons fanned), S*2 uint32 indices of line segments (closed curves).
-std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves);
+// triangle count T, segment count S, texture flag U; then V*3 float32 positions, if U is
+// 1 V*2 float32 texture coordinates, T*3 uint32 vertex indices (polygons fanned), S*2
+// uint32 indices of line segments (closed curves). With texture coordinates (an
+// appearance that has them) every triangle corner is a vertex of its own, as texture
+// seams need.
+std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance = {});
 
 struct StudioDownload {
   std::string bytes;
@@ -119,8 +136,9 @@ struct StudioDownload {
 
 // One file of the result. Files made by the library's writers go through `scratch`, a
 // private folder the caller owns, under names of the caller's choosing (`stem`) that no
-// client picks, and are removed once read. The zip holds OBJ + MTL (+ PNG textures).
-// Throws UsageError for a mesh file in curve mode.
+// client picks, and are removed once read. The zip holds OBJ + MTL (+ the PNG texture of
+// a duotone). Throws UsageError for a mesh file in curve mode, texture.png without a
+// duotone.
 StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
                                const std::filesystem::path& scratch, const std::string& stem);
 

@@ -40,6 +40,7 @@ const surfaceMaterial = new THREE.MeshStandardMaterial({
 });
 const resultMaterial = new THREE.MeshStandardMaterial({ color: 0xb8733a, roughness: 0.45, metalness: 0.3, side: THREE.DoubleSide });
 const curveMaterial = new THREE.LineBasicMaterial({ color: 0xbf1f14 });
+const duotoneMaterial = new THREE.MeshStandardMaterial({ roughness: 0.8, side: THREE.DoubleSide });
 let surfaceObject = null;
 let resultObject = null;
 
@@ -54,22 +55,29 @@ new ResizeObserver(resize).observe(container);
 resize();
 
 // The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, triangle and
-// segment counts, then float32 positions, uint32 triangles, uint32 segments.
+// segment counts and a texture flag, then float32 positions, [float32 texture
+// coordinates], uint32 triangles, uint32 segments.
 function parseView(buffer) {
-  const header = new DataView(buffer, 0, 16);
+  const header = new DataView(buffer, 0, 20);
   if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MNDR') throw new Error('not a Meander view');
   const v = header.getUint32(4, true), t = header.getUint32(8, true), s = header.getUint32(12, true);
-  const positions = new Float32Array(buffer, 16, v * 3);
-  const triangles = new Uint32Array(buffer, 16 + v * 12, t * 3);
-  const segments = new Uint32Array(buffer, 16 + v * 12 + t * 12, s * 2);
+  const textured = header.getUint32(16, true) === 1;
+  let offset = 20;
+  const positions = new Float32Array(buffer, offset, v * 3);
+  offset += v * 12;
+  const uvs = textured ? new Float32Array(buffer, offset, v * 2) : null;
+  if (textured) offset += v * 8;
+  const triangles = new Uint32Array(buffer, offset, t * 3);
+  const segments = new Uint32Array(buffer, offset + t * 12, s * 2);
   const position = new THREE.BufferAttribute(positions, 3);
   if (t > 0) {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', position);
+    if (uvs) geometry.setAttribute('uv', new THREE.BufferAttribute(uvs, 2));
     geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
     geometry.computeVertexNormals();
     geometry.computeBoundingBox();
-    return { geometry, lines: false };
+    return { geometry, lines: false, textured };
   }
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', position);
@@ -126,6 +134,7 @@ window.studio = {
       vertices: resultObject.geometry.attributes.position.count,
       indices: resultObject.geometry.index.count,
       lines: resultObject.isLineSegments === true,
+      textured: resultObject.geometry.attributes.uv !== undefined,
       min: box.min.toArray(), max: box.max.toArray(),
     };
   },
@@ -219,6 +228,11 @@ function params() {
     t: Number($('t').value),
     thickness: Number($('thickness').value),
     levels: Number($('levels').value),
+    rule: $('rule').value,
+    colors: `${$('color0').value},${$('color1').value}`,
+    tiles: $('tiles').value,
+    texture_size: Number($('texture-size').value),
+    subdivide: Number($('subdivide').value),
   };
 }
 
@@ -237,8 +251,17 @@ async function make() {
       method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(params()),
     })).json();
     const buffer = await (await api(`/api/result/${state.session}/view.bin`)).arrayBuffer();
-    const { geometry, lines } = parseView(buffer);
-    resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, curveMaterial) : new THREE.Mesh(geometry, resultMaterial));
+    const { geometry, lines, textured } = parseView(buffer);
+    if (textured) {
+      const texture = await new THREE.TextureLoader().loadAsync(`/api/result/${state.session}/texture.png?r=${stats.revision}`);
+      texture.colorSpace = THREE.SRGBColorSpace;
+      texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
+      duotoneMaterial.map?.dispose();
+      duotoneMaterial.map = texture;
+      duotoneMaterial.needsUpdate = true;
+    }
+    const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
+    resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
     state.lastUpdateMs = performance.now() - start;
     state.revision = stats.revision;
     state.stats = stats;
@@ -257,10 +280,12 @@ function showStats(stats) {
   const yesNo = (b) => (b ? 'yes' : 'no');
   const rows = [
     ['triangles', stats.triangles.toLocaleString()],
-    ['curves', stats.curves],
+    [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
     ['curve length', stats.curve_length.toPrecision(5)],
   ];
-  if (stats.mode !== 'curve') {
+  if (stats.mode === 'duotone') {
+    rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
+  } else if (stats.mode !== 'curve') {
     rows.push(['faces', stats.faces.toLocaleString()], ['watertight', yesNo(stats.watertight)],
       ['self-intersection', yesNo(stats.self_intersecting)]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
@@ -298,9 +323,18 @@ for (const output of document.querySelectorAll('output[for]')) {
   input.addEventListener('input', show);
   show();
 }
-for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius', 'radius-auto', 'sides', 's', 't', 'thickness', 'levels'])
+for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius', 'radius-auto', 'sides', 's', 't', 'thickness',
+  'levels', 'rule', 'color0', 'color1', 'tiles', 'texture-size', 'subdivide'])
   $(id).addEventListener('input', changed);
-$('mode').addEventListener('input', showModeControls);
+// Duotone starts from its command's default quads (Catmull-Clark topology), the others
+// from dual-simplest, as `meander duotone` and `meander curve`/`wire` do.
+let previousMode = $('mode').value;
+$('mode').addEventListener('input', () => {
+  const mode = $('mode').value;
+  if ((mode === 'duotone') !== (previousMode === 'duotone')) $('quad').value = mode === 'duotone' ? 'catmull-clark' : 'dual-simplest';
+  previousMode = mode;
+  showModeControls();
+});
 $('radius-auto').addEventListener('input', () => { $('radius').disabled = $('radius-auto').checked; });
 $('new-seed').addEventListener('click', () => {
   $('seed').value = Math.floor(Math.random() * 2 ** 31);

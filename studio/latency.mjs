@@ -1,0 +1,50 @@
+// Measures the studio's live update end to end in the browser (docs/benchmarks.md):
+//   node latency.mjs MEANDER_BINARY MESH_FILE [MODE:LEVELS ...]
+// For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times and prints the median of the page's own
+// figure: from the request leaving to the new geometry in the scene (make + view.bin +
+// parsing), and the server's share.
+import { spawn } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [binary, meshFile, ...chosen] = process.argv.slice(2);
+const modes = chosen.length ? chosen.map((m) => m.split(':')).map(([mode, levels]) => [mode, Number(levels ?? 1)])
+  : [['curve', 1], ['constant-ribbon', 1], ['constant-wire', 1], ['variable-ribbon', 0], ['variable-wire', 0],
+    ['variable-ribbon', 1], ['variable-wire', 1], ['duotone', 0]];
+const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const url = await new Promise((resolve) => server.stdout.on('data', (c) => { const m = `${c}`.match(/(http:\/\/\S+)/); if (m) resolve(m[1]); }));
+const profile = mkdtempSync(path.join(tmpdir(), 'meander-latency-'));
+const browser = await chromium.launchPersistentContext(profile, {
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+try {
+  const page = browser.pages()[0] ?? await browser.newPage();
+  await page.goto(url);
+  const idle = (after) => page.waitForFunction((r) => !window.studio.state.busy && !window.studio.state.pending && window.studio.state.revision > r, after, { timeout: 600000 });
+  await page.setInputFiles('#file', { name: path.basename(meshFile), mimeType: 'application/octet-stream', buffer: readFileSync(meshFile) });
+  await idle(0);
+  const set = (id, value) => page.evaluate(([i, v]) => { const e = document.getElementById(i); e.value = v; e.dispatchEvent(new Event('input', { bubbles: true })); }, [id, value]);
+  for (const [mode, levels] of modes) {
+    await set(mode === 'duotone' ? 'subdivide' : 'levels', String(levels));
+    let revision = await page.evaluate(() => window.studio.state.revision);
+    await set('mode', mode);
+    await idle(revision);
+    const runs = [];
+    for (let seed = 2; seed <= 4; ++seed) {
+      revision = await page.evaluate(() => window.studio.state.revision);
+      await set('seed', String(seed));
+      await idle(revision);
+      runs.push(await page.evaluate(() => ({ total: window.studio.state.lastUpdateMs, server: window.studio.state.stats.seconds * 1000, triangles: window.studio.state.stats.triangles })));
+    }
+    runs.sort((a, b) => a.total - b.total);
+    const m = runs[1];
+    console.log(`${mode} levels ${levels}: ${m.triangles} triangles, end to end ${m.total.toFixed(0)} ms (server ${m.server.toFixed(0)} ms)`);
+  }
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  rmSync(profile, { recursive: true, force: true });
+}
