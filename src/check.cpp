@@ -586,6 +586,9 @@ RepairResult repair(const PolygonMesh& mesh, std::string_view name, const Repair
 RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
   const std::string prefix = std::string(name) + ": ";
   const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
+  if (options.max_faces > 0 && mesh.num_faces() > options.max_faces)
+    throw InputError(prefix + std::to_string(mesh.num_faces()) + " faces, more than the limit of " +
+                     std::to_string(options.max_faces));
   RepairResult result{std::move(mesh), {}, {}, {}};
   PolygonMesh& m = result.mesh;
   std::vector<std::string>& repairs = result.repairs;

@@ -585,6 +585,18 @@ TEST(CheckRepair, NanPositionIsRefused) {
   }
 }
 
+// The server's guard: a mesh above the limit is refused before any work, one at the
+// limit is repaired as usual.
+TEST(CheckRepair, MaxFacesRefusesLargerMeshes) {
+  try {
+    repair(cube(), "x.obj", {.max_faces = 5});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "x.obj: 6 faces, more than the limit of 5");
+  }
+  EXPECT_EQ(repair(cube(), "x.obj", {.max_faces = 6}).mesh.num_faces(), 6);
+}
+
 // A NaN no face uses does no harm: it is dropped like any unused vertex.
 TEST(CheckRepair, UnusedNanPositionIsDropped) {
   PolygonMesh m = tetrahedron();

@@ -87,6 +87,19 @@ INSTANTIATE_TEST_SUITE_P(Index, CurveOnRealMesh, ::testing::ValuesIn(real_meshes
   return test_name(param_info.param.file);
 });
 
+// --max-faces refuses a larger input, with exit code 1 and no output.
+TEST(CliCurve, MaxFacesRefusesLargerInputs) {
+  const auto dir = output_dir();
+  const auto mesh = dir / "sphere.obj", out = dir / "curve.obj";
+  ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "500", "-o", mesh.string()}).exit_code, 0);
+  const CommandResult refused = run_cli({"curve", mesh.string(), "-o", out.string(), "--max-faces", "100"});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find(mesh.string() + ": "), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find(" faces, more than the limit of 100"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_EQ(run_cli({"curve", mesh.string(), "-o", out.string(), "--max-faces", "100000"}).exit_code, 0);
+}
+
 // --strict refuses what the default repairs, naming the file and the problem.
 TEST(CliCurve, StrictRefusesBrokenMeshesPrecisely) {
   MEANDER_REQUIRE_SHARED_MESHES();

@@ -30,6 +30,7 @@ void add_curve_flags(CLI::App& app, CurveFlags& flags) {
   app.add_option("--seed", flags.seed, "random seed (same seed, same output)")->capture_default_str();
   app.add_option("--smooth", flags.smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
   app.add_option("--samples", flags.samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--max-faces", flags.max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
 }
 
 CurveJob curve_job(const CurveFlags& flags) {
@@ -52,10 +53,10 @@ void StageLog::note(const std::string& line) {
   if (verbose_) std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log) {
+RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces) {
   PolygonMesh mesh = read_mesh(path);
   log.lap("read");
-  RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict});
+  RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict, .max_faces = max_faces});
   for (const std::string& line : repaired.repairs) std::fprintf(stderr, "%s: repaired: %s\n", path.string().c_str(), line.c_str());
   for (const std::string& line : repaired.notices) std::fprintf(stderr, "%s: note: %s\n", path.string().c_str(), line.c_str());
   log.lap("check");

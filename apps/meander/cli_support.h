@@ -20,11 +20,12 @@ void require_output_path(const std::filesystem::path& path, std::initializer_lis
                          std::string_view option);
 
 // The options every command that builds the curve takes: --quad --tree --seed --smooth
-// --samples, as `meander curve` defines them.
+// --samples --max-faces, as `meander curve` defines them.
 struct CurveFlags {
   std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
   uint64_t seed = 1;
   int samples = 4;
+  int64_t max_faces = 0; // --max-faces: refuse larger inputs (RepairOptions::max_faces)
 };
 void add_curve_flags(CLI::App& app, CurveFlags& flags);
 CurveJob curve_job(const CurveFlags& flags);
@@ -32,7 +33,7 @@ CurveJob curve_job(const CurveFlags& flags);
 // Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
 // each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.
 class StageLog;
-RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log);
+RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces = 0);
 
 // Prints "  stage    12.3 ms" lines on stderr when verbose.
 class StageLog {

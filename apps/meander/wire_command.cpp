@@ -49,7 +49,7 @@ void run_wire(const WireArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  RepairResult input = read_and_repair(a.input, a.strict, log);
+  RepairResult input = read_and_repair(a.input, a.strict, log, a.curve.max_faces);
   StageTimes times;
   const CurveResult curve = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);

@@ -77,6 +77,9 @@ MeshReport inspect(const PolygonMesh& mesh);
 struct RepairOptions {
   // Refuse (throw TopologyError) at the first problem instead of repairing it.
   bool strict = false;
+  // Refuse (throw InputError) a mesh of more faces than this before any work, so that a
+  // server bounds what one request may cost; 0: no limit.
+  int64_t max_faces = 0;
 };
 
 struct RepairResult {

@@ -472,6 +472,39 @@ void add_scene_mesh(GlbBuilder& glb, nlohmann::json primitives) {
   glb.json()["scenes"][0]["nodes"] = {0};
 }
 
+// tinygltf copies `extras` and `extensions` into its own values recursively, one stack
+// frame per level, so JSON nested a few ten thousand levels deep overflows the stack.
+// glTF itself nests about 6 levels; 64 leaves room for any sensible extras.
+constexpr int max_json_depth = 64;
+
+// The JSON of a .gltf, or the first chunk of a .glb (when its header can be read).
+std::string_view json_text(std::string_view bytes, bool binary) {
+  if (!binary) return bytes;
+  constexpr size_t header = 20; // magic, version, length, then chunk length and type
+  if (bytes.size() < header) return {};
+  return bytes.substr(header, load_little_endian<uint32_t>(bytes.data() + 12));
+}
+
+// The deepest nesting of arrays and objects, brackets inside strings not counted.
+int json_depth(std::string_view json) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 } // namespace
 
 TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
@@ -483,6 +516,8 @@ TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
   if (bytes.size() > UINT32_MAX) fail_input(name, "file too large for glTF (over 4 GiB)");
   const std::string folder = path.parent_path().empty() ? "." : path.parent_path().string();
   const bool binary = bytes.starts_with("glTF");
+  if (json_depth(json_text(bytes, binary)) > max_json_depth)
+    fail_input(name, "JSON nested deeper than " + std::to_string(max_json_depth) + " levels");
   bool ok = false;
   try {
     ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warnings, reinterpret_cast<const unsigned char*>(bytes.data()),
