@@ -7,11 +7,12 @@ JOBS ?= $(shell nproc)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
                    libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev \
-                   libembree-dev libstb-dev lib3mf-dev libcgal-dev libtinygltf-dev
+                   libembree-dev libstb-dev lib3mf-dev libcgal-dev libtinygltf-dev \
+                   clang-16 libclang-rt-16-dev
 # cpp-httplib: the studio's server (`meander serve`).
 DEBIAN_PACKAGES += libcpp-httplib-dev
 
-.PHONY: deps build demo test studio browser bench gallery clean
+.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -32,14 +33,42 @@ demo: build
 	./$(BUILD)/meander wire out/pretzel.obj -o out/pretzel_wire.stl --samples 2 --report out/pretzel_wire.json --png out/pretzel_wire.png --size 800x600
 	@echo "demo: outputs are in out/"
 
-test: build browser
-	@# The Khronos glTF validator (npm) checks the GLB files Meander writes.
+test: build validator browser
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS)
+
+# The Khronos glTF validator (npm) checks the GLB files Meander writes.
+validator:
 	@if ! command -v npm > /dev/null; then \
 	  echo "make test: installing Debian's nodejs and npm for the glTF validator"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq nodejs npm; \
 	fi
 	cd tests && npm ci --no-audit --no-fund --loglevel=error
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The hardening build (docs/robustness.md): clang with AddressSanitizer, UndefinedBehaviorSanitizer
+# and libFuzzer's coverage, for the whole suite (`make test-sanitize`) and the fuzz targets
+# (`make fuzz`, each run FUZZ_SECONDS, one after the other). Clang 16, not Debian 12's
+# default 14: the library captures structured bindings in lambdas (C++20), which clang
+# accepts from 16 on.
+SANITIZE_BUILD ?= build-sanitize
+FUZZ_SECONDS ?= 60
+# `make test` runs each fuzz target this long: every seed (tests/corpus, tests/regressions,
+# the small shared meshes) under the sanitizers, then a little fuzzing.
+CI_FUZZ_SECONDS ?= 15
+# Which tests test-sanitize runs (a ctest -R regex; empty: all of them).
+SANITIZE_TESTS ?=
+
+sanitize-config: deps
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-16 \
+	  -DMEANDER_BUILD_FUZZ=ON > /dev/null
+
+test-sanitize: sanitize-config validator
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && ctest --output-on-failure -j $(JOBS) $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)')
+
+fuzz: sanitize-config
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
+	fuzz/run.sh $(SANITIZE_BUILD) $(FUZZ_SECONDS)
 
 # The studio's page (studio/: three.js built by vite into studio/dist, which `meander serve`
 # serves; no CDN at run time).

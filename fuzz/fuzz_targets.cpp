@@ -1,0 +1,197 @@
+#include "fuzz_targets.h"
+
+#include "meander/check.h"
+#include "meander/error.h"
+#include "meander/pipeline.h"
+#include "meander/studio.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <string_view>
+
+namespace meander::fuzz {
+
+namespace {
+
+// Takes the input a value at a time; past the end every value is 0, so that any input,
+// however short, is a complete recipe.
+class Bytes {
+public:
+  explicit Bytes(std::span<const uint8_t> bytes) : bytes_(bytes) {}
+  bool empty() const { return bytes_.empty(); }
+  uint8_t byte() {
+    if (bytes_.empty()) return 0;
+    const uint8_t b = bytes_[0];
+    bytes_ = bytes_.subspan(1);
+    return b;
+  }
+  template <class T> T value() {
+    uint8_t raw[sizeof(T)] = {};
+    for (uint8_t& b : raw) b = byte();
+    T v;
+    std::memcpy(&v, raw, sizeof(T));
+    return v;
+  }
+
+private:
+  std::span<const uint8_t> bytes_;
+};
+
+// What io.h promises of a mesh a reader returns, and check.h of one repair returns
+// (which also needs no unused vertex); "" when it holds.
+std::string mesh_problem(const PolygonMesh& mesh, bool repaired) {
+  const auto& start = mesh.face_start;
+  if (start.size() < 2 || start.front() != 0 || size_t(start.back()) != mesh.face_vertices.size())
+    return "face_start does not span face_vertices";
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    if (mesh.face_size(f) < 3) return "face " + std::to_string(f) + " has fewer than 3 vertices";
+    for (int32_t v : mesh.face(f))
+      if (v < 0 || v >= mesh.num_vertices()) return "face " + std::to_string(f) + ": index out of range";
+  }
+  for (const Vec3& p : mesh.positions)
+    if (!is_finite(p)) return "a position is not finite";
+  if (!repaired) return {};
+  const MeshReport r = inspect(mesh);
+  if (r.degenerate_faces || r.duplicate_faces || r.non_manifold_edges || r.non_manifold_vertices ||
+      r.unreferenced_vertices || r.out_of_range_indices || r.non_finite_positions)
+    return "repair left a problem that inspect() reports";
+  for (size_t k = 0; k < r.components.size(); ++k)
+    if (r.components[k].orientable && r.components[k].misoriented_edges > 0)
+      return "repair left orientable component " + std::to_string(k) + " misoriented";
+  return {};
+}
+
+// Repairs a mesh and checks what comes out, including that a second repair finds nothing.
+std::string repair_problem(const PolygonMesh& mesh, RepairResult& result) {
+  result = repair(mesh, "fuzz");
+  if (std::string problem = mesh_problem(result.mesh, true); !problem.empty()) return problem;
+  if (const RepairResult again = repair(result.mesh, "fuzz"); !again.repairs.empty())
+    return "a repaired mesh needs another repair: " + again.repairs.front();
+  return {};
+}
+
+template <class F> std::string refusals_pass(F body) {
+  try {
+    return body();
+  } catch (const Error&) {
+    return {};
+  }
+}
+
+} // namespace
+
+std::string read_mesh_target(std::span<const uint8_t> bytes, MeshFormat format) {
+  return refusals_pass([&] {
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    const PolygonMesh mesh = read_mesh(text, format, "fuzz");
+    if (std::string problem = mesh_problem(mesh, false); !problem.empty()) return "read_mesh: " + problem;
+    inspect(mesh);
+    RepairResult repaired;
+    return repair_problem(mesh, repaired);
+  });
+}
+
+std::string repair_target(std::span<const uint8_t> input) {
+  Bytes bytes(input);
+  PolygonMesh mesh;
+  // Few vertices, so that faces meet often: fans, bow-ties, duplicates, flipped faces.
+  mesh.positions.resize(bytes.byte() % 16);
+  for (Vec3& p : mesh.positions) p = {bytes.value<float>(), bytes.value<float>(), bytes.value<float>()};
+  const int faces = bytes.byte() % 32;
+  for (int f = 0; f < faces && !bytes.empty(); ++f) {
+    std::vector<int32_t> face(bytes.byte() % 8);
+    // Mostly small indices, sometimes any int32 (negative, huge).
+    for (int32_t& v : face) v = bytes.byte() == 0xff ? bytes.value<int32_t>() : bytes.byte() % 20;
+    mesh.add_face(face);
+  }
+  inspect(mesh);
+  return refusals_pass([&] {
+    RepairResult repaired;
+    return repair_problem(mesh, repaired);
+  });
+}
+
+std::string curve_target(std::span<const uint8_t> input) {
+  Bytes bytes(input);
+  CurveJob job;
+  job.quadrangulation = Quadrangulation(bytes.byte() % 3);
+  job.cycle.tree = TreeStrategy(bytes.byte() % 4);
+  job.cycle.seed = bytes.byte();
+  job.curve.smoothing = Smoothing(bytes.byte() % 3);
+  job.curve.samples = 1 + bytes.byte() % 4;
+  PolygonMesh mesh;
+  // Points of a 4x4x4 grid: finite, often coplanar or collinear, sometimes coincident.
+  mesh.positions.resize(4 + bytes.byte() % 24);
+  for (Vec3& p : mesh.positions) {
+    const uint8_t b = bytes.byte();
+    p = {float(b & 3), float((b >> 2) & 3), float((b >> 4) & 3)};
+  }
+  const int faces = 1 + bytes.byte() % 48;
+  for (int f = 0; f < faces; ++f) {
+    std::vector<int32_t> face(3 + bytes.byte() % 3);
+    for (int32_t& v : face) v = bytes.byte() % mesh.num_vertices();
+    mesh.add_face(face);
+  }
+  return refusals_pass([&]() -> std::string {
+    RepairResult repaired;
+    if (std::string problem = repair_problem(mesh, repaired); !problem.empty()) return problem;
+    const size_t components = inspect(repaired.mesh).components.size();
+    const CurveResult result = make_curve(std::move(repaired.mesh), std::move(repaired.connectivity), job);
+    const QuadMesh& quads = result.quads;
+    const TriangleCycle& cycle = result.cycle;
+    if (std::string problem = verify_cycle(quads, cycle); !problem.empty()) return "verify_cycle: " + problem;
+    // The same again without the library's verifier: the triangles are distinct, and
+    // neighbours in each cycle share two vertices.
+    if (std::set<int32_t>(cycle.order.begin(), cycle.order.end()).size() != cycle.order.size())
+      return "a triangle appears twice in the cycles";
+    for (int32_t k = 0; k < cycle.num_cycles(); ++k) {
+      const int32_t first = cycle.cycle_start[size_t(k)], end = cycle.cycle_start[size_t(k) + 1];
+      for (int32_t i = first; end - first > 1 && i < end; ++i) {
+        auto a = cycle_triangle(quads, cycle.order[size_t(i)]);
+        auto b = cycle_triangle(quads, cycle.order[size_t(i + 1 < end ? i + 1 : first)]);
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        std::vector<int32_t> shared;
+        std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(shared));
+        if (shared.size() != 2)
+          return "cycle " + std::to_string(k) + ": triangles " + std::to_string(i - first) + " and the next share " +
+                 std::to_string(shared.size()) + " vertices";
+      }
+    }
+    if (size_t(cycle.num_cycles()) != components)
+      return std::to_string(cycle.num_cycles()) + " cycles for " + std::to_string(components) + " components";
+    if (result.curves.size() != cycle.num_cycles()) return "not one curve per cycle";
+    for (const Vec3& p : result.curves.points)
+      if (!is_finite(p)) return "a curve point is not finite";
+    return {};
+  });
+}
+
+std::string make_request_target(std::span<const uint8_t> bytes) {
+  MakeRequest request;
+  try {
+    request = parse_make_request({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  } catch (const UsageError&) {
+    return {};
+  }
+  const StudioParams& p = request.params;
+  const auto within = [](double v, double low, double high) { return std::isfinite(v) && v >= low && v <= high; };
+  if (!within(p.radius, 0, INFINITY) || !within(p.thickness, 0, INFINITY)) return "radius or thickness out of range";
+  if (!within(p.s, 0, 1) || !within(p.t, 0, 1)) return "s or t out of [0, 1]";
+  if (p.sides < 3 || p.sides > 64 || p.levels < 0 || p.levels > 6) return "sides or levels out of range";
+  if (p.job.curve.samples < 1 || p.job.curve.samples > 1000) return "samples out of range";
+  return {};
+}
+
+std::string upload_target(std::span<const uint8_t> input) {
+  const std::string_view all(reinterpret_cast<const char*>(input.data()), input.size());
+  const size_t newline = std::min(all.find('\n'), all.size());
+  return refusals_pass([&] {
+    const StudioSurface surface = load_studio_surface(all.substr(0, newline), all.substr(std::min(newline + 1, all.size())));
+    return mesh_problem(surface.repaired.mesh, true);
+  });
+}
+
+} // namespace meander::fuzz

@@ -1,0 +1,42 @@
+// The bodies of the fuzz targets, shared by the libFuzzer entry points (fuzz/*_fuzz.cpp)
+// and by the regression test that replays every input the fuzzers ever crashed on
+// (tests/regressions_test.cpp). Each takes arbitrary bytes, lets Meander's own errors
+// (meander::Error) pass as a correct refusal, and returns "" when the result holds the
+// stated invariants, else the first violation. Anything else (a crash, another
+// exception, a sanitizer report, a hang) is a finding too, caught by the caller.
+#pragma once
+
+#include "meander/io.h"
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace meander::fuzz {
+
+// read_mesh(bytes, format); a mesh it returns must be what io.h promises: at least one
+// face, faces of >= 3 vertices, indices in range, finite positions. inspect() and
+// repair() must then take it without failing otherwise than by a refusal.
+std::string read_mesh_target(std::span<const uint8_t> bytes, MeshFormat format);
+
+// A small mesh whose positions and indices are the bytes themselves (NaN, negative and
+// out-of-range indices, repeated vertices, any face size): inspect() never throws, and
+// what repair() returns passes inspect() clean and needs no second repair.
+std::string repair_target(std::span<const uint8_t> bytes);
+
+// A small mesh of arbitrary faces on grid points, repaired, then the whole curve
+// pipeline under the quadrangulation, tree and seed the bytes pick: every triangle of the
+// cycle once, consecutive triangles sharing an edge (also last to first), one cycle per
+// component, one finite closed curve per cycle.
+std::string curve_target(std::span<const uint8_t> bytes);
+
+// The body of the studio's POST /api/make (parse_make_request): refused with a
+// UsageError, or parameters within the CLI's ranges.
+std::string make_request_target(std::span<const uint8_t> bytes);
+
+// An upload to the studio (load_studio_surface): the bytes up to the first newline are
+// the file name as the browser sent it (any path, any extension), the rest the file.
+// Refused with Meander's own error, or a repaired mesh as repair() promises.
+std::string upload_target(std::span<const uint8_t> bytes);
+
+} // namespace meander::fuzz

@@ -1,0 +1,70 @@
+// Writers never leave a partial file (io.h, src/io/atomic_file): the CLI killed with
+// SIGKILL in the middle of writing a large output, when no cleanup code can run, leaves
+// at the target either no file or the previous complete one. Only its temporary file
+// (".NAME.tmp.XXXXXX" beside the target) is left behind, under a name no reader takes
+// for the output.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace meander {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The size of the first temporary file of `target` in its folder, or 0.
+uintmax_t temporary_size(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp.";
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(target.parent_path()))
+    if (entry.path().filename().string().starts_with(prefix)) return entry.file_size(error);
+  return 0;
+}
+
+// Runs `meander generate sphere` of about a million faces (an OBJ of ~40 MB) into
+// `target` and kills it once its temporary file holds a megabyte. Returns whether it was
+// killed while writing (and not finished or failed first).
+bool kill_while_writing(const fs::path& target) {
+  const std::string cli = MEANDER_CLI;
+  std::vector<std::string> args = {cli, "generate", "sphere", "--faces", "1000000", "-o", target.string()};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(cli.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (temporary_size(target) < (uintmax_t(1) << 20)) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+TEST(AtomicFile, KilledMidWriteLeavesNoFile) {
+  const fs::path target = test::output_dir() / "big.obj";
+  ASSERT_TRUE(kill_while_writing(target));
+  EXPECT_FALSE(fs::exists(target));
+}
+
+TEST(AtomicFile, KilledMidWriteLeavesThePreviousFileWhole) {
+  const fs::path target = test::output_dir() / "big.obj";
+  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "100", "-o", target.string()}).exit_code, 0);
+  const std::string previous = test::read_file(target);
+  ASSERT_FALSE(previous.empty());
+  ASSERT_TRUE(kill_while_writing(target));
+  EXPECT_EQ(test::read_file(target), previous);
+}
+
+} // namespace
+} // namespace meander
