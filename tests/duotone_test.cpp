@@ -299,7 +299,7 @@ TEST(Duotone, SubdivisionCarriesTheTilesWithoutSeams) {
   // surface still shows exactly two regions, on a closed surface and on one with boundary.
   const TileOptions tiles{.texture_size = 256};
   for (const PolygonMesh& mesh : {genus_surface(2, 300), grid(40)}) {
-    const TexturedMesh smooth = subdivide(duotone_surface(duotone_of(mesh), tiles), {.levels = 2});
+    const TexturedMesh smooth = subdivide(duotone_surface(duotone_of(mesh), tiles), {.levels = 1});
     EXPECT_EQ(smooth.appearance.texcoords.size(), smooth.mesh.face_vertices.size());
     EXPECT_EQ(smooth.appearance.materials.size(), 1u);
     EXPECT_EQ(count_picture_regions(smooth, tiles.colors), 2);
