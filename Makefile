@@ -72,7 +72,10 @@ fuzz: sanitize-config
 
 # The studio's page (studio/: three.js built by vite into studio/dist, which `meander serve`
 # serves; no CDN at run time).
-studio:
+studio: studio/dist/index.html
+
+# Rebuilt only when its sources change (npm ci takes seconds even when nothing did).
+studio/dist/index.html: studio/package-lock.json studio/index.html studio/vite.config.js $(wildcard studio/src/*)
 	@if ! command -v npm > /dev/null; then \
 	  echo "make: installing Debian's nodejs and npm for the studio's page"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq nodejs npm; \
