@@ -27,6 +27,8 @@ function check(condition, message) {
 }
 
 const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+// Whatever fails below, the server goes with this process.
+process.on('exit', () => server.kill('SIGTERM'));
 const url = await new Promise((resolve, reject) => {
   let text = '';
   server.stdout.on('data', (chunk) => {

@@ -14,6 +14,8 @@ const modes = chosen.length ? chosen.map((m) => m.split(':')).map(([mode, levels
   : [['curve', 1], ['constant-ribbon', 1], ['constant-wire', 1], ['variable-ribbon', 0], ['variable-wire', 0],
     ['variable-ribbon', 1], ['variable-wire', 1], ['duotone', 0]];
 const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+// Whatever fails below, the server goes with this process.
+process.on('exit', () => server.kill('SIGTERM'));
 const url = await new Promise((resolve) => server.stdout.on('data', (c) => { const m = `${c}`.match(/(http:\/\/\S+)/); if (m) resolve(m[1]); }));
 const profile = mkdtempSync(path.join(tmpdir(), 'meander-latency-'));
 const browser = await chromium.launchPersistentContext(profile, {
