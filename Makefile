@@ -54,7 +54,7 @@ SANITIZE_BUILD ?= build-sanitize
 FUZZ_SECONDS ?= 60
 # `make test` runs each fuzz target this long: every seed (tests/corpus, tests/regressions,
 # the small shared meshes) under the sanitizers, then a little fuzzing.
-CI_FUZZ_SECONDS ?= 15
+CI_FUZZ_SECONDS ?= 10
 # Which tests test-sanitize runs (a ctest -R regex; empty: all of them).
 SANITIZE_TESTS ?=
 
