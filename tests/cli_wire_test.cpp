@@ -84,8 +84,9 @@ TEST_P(CliWire, RibbonsAreBands) {
     // The variable ribbon's control strip lies in the cycle's triangles, so it stays
     // clear even where the slab of a wire folds; smoothing a fold on Spot's coarse
     // control mesh makes a few smoothed triangles touch (docs/wires.md).
-    if (std::string(method) == "variable" && std::string(GetParam()) != "spot_control_mesh.obj")
+    if (std::string(method) == "variable" && std::string(GetParam()) != "spot_control_mesh.obj") {
       EXPECT_FALSE(nlohmann::json::parse(read_file(dir / "ribbon.json"))["self_intersecting"].get<bool>());
+    }
   }
 }
 

@@ -149,6 +149,15 @@ TEST(Polylines, MalformedEdgesAreRefusedNamingTheElement) {
   for (const auto& [bytes, message] : cases) {
     const auto path = test::write_file("bad.ply", bytes);
     EXPECT_EQ(message_of<InputError>([&] { read_polylines(path); }), path.string() + ": " + message);
+    // Only a file without polylines may be taken for a mesh by `meander render`.
+    bool no_polylines = false;
+    try {
+      read_polylines(path);
+    } catch (const NoPolylinesError&) {
+      no_polylines = true;
+    } catch (const InputError&) {
+    }
+    EXPECT_EQ(no_polylines, message.starts_with("no polylines")) << message;
   }
 }
 

@@ -149,7 +149,7 @@ TEST(ReadPolylines, RefusesAFileWithoutLines) {
   try {
     read_polylines(path);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const NoPolylinesError& e) { // what `meander render` then reads as a mesh
     EXPECT_EQ(std::string(e.what()), path.string() + ": no polylines (l elements)");
   }
   const auto short_line = test::write_file("short.obj", "v 0 0 0\nl 1\n");

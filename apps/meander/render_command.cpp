@@ -35,8 +35,9 @@ void read_input(const std::string& input, Scene& scene) {
     Polylines curves;
     try {
       curves = read_polylines(input);
-    } catch (const InputError& curve_error) {
-      if (std::string_view(curve_error.what()).find(": no polylines") != std::string_view::npos) throw mesh_error;
+    } catch (const NoPolylinesError&) {
+      throw mesh_error;
+    } catch (const InputError&) {
       throw;
     } catch (const Error&) {
       throw mesh_error;

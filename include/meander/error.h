@@ -21,6 +21,14 @@ public:
   using Error::Error;
 };
 
+// A well-formed file that holds no polylines (no `l` elements, no edges): what a
+// caller trying a file as a curve and then as a mesh (`meander render`) tells apart
+// from a malformed curve file.
+class NoPolylinesError : public InputError {
+public:
+  using InputError::InputError;
+};
+
 // A file cannot be opened, read, written or renamed.
 class IOError : public Error {
 public:

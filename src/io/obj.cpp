@@ -62,7 +62,7 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
     in.next_line();
   }
   forward.check(name, "line", int64_t(positions.size()));
-  if (start.size() == 1) fail_input(name, "no polylines (l elements)");
+  if (start.size() == 1) fail_no_polylines(name, "l elements");
   Polylines curves;
   curves.start = std::move(start);
   if (std::find(open.begin(), open.end(), 1) != open.end()) curves.open = std::move(open);

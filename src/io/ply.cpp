@@ -131,7 +131,7 @@ void assign_roles(Header& header, Target target, std::string_view name) {
   }
   if (std::string message = too_many(vertex->count, "vertices"); !message.empty()) fail(message);
   if (target == Target::polylines) {
-    if (!face) fail_input(name, "no polylines (edge elements)");
+    if (!face) fail_no_polylines(name, "edge elements");
     for (Role end : {Role::vertex1, Role::vertex2}) {
       const std::string end_name = end == Role::vertex1 ? "vertex1" : "vertex2";
       const auto p = std::find_if(face->properties.begin(), face->properties.end(),

@@ -165,7 +165,7 @@ Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32
     out.open.push_back(!closed);
     any_open |= !closed;
   }
-  if (out.size() == 0) fail_input(name, "no polylines (no edges)");
+  if (out.size() == 0) fail_no_polylines(name, "no edges");
   if (!any_open) out.open.clear();
   return out;
 }

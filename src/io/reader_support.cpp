@@ -11,6 +11,10 @@ void fail_input(std::string_view name, std::string_view message) {
   throw InputError(std::string(name) + ": " + std::string(message));
 }
 
+void fail_no_polylines(std::string_view name, std::string_view what) {
+  throw NoPolylinesError(std::string(name) + ": no polylines (" + std::string(what) + ")");
+}
+
 void fail_at_line(std::string_view name, int64_t line, std::string_view message) {
   throw InputError(std::string(name) + ":" + std::to_string(line) + ": " + std::string(message));
 }

@@ -17,6 +17,8 @@ inline constexpr int64_t max_count = std::numeric_limits<int32_t>::max();
 
 // Throws InputError("name: message").
 [[noreturn]] void fail_input(std::string_view name, std::string_view message);
+// Throws NoPolylinesError "NAME: no polylines (WHAT)".
+[[noreturn]] void fail_no_polylines(std::string_view name, std::string_view what);
 
 // Throws InputError("name:line: message").
 [[noreturn]] void fail_at_line(std::string_view name, int64_t line, std::string_view message);
