@@ -201,6 +201,9 @@ MakeRequest parse_make_request(std::string_view body) {
       p.tiles.texture_size = integer_in(value, "texture_size", 64, 8192);
     } else if (key == "subdivide") {
       p.subdivide = integer_in(value, "subdivide", 0, 5);
+    } else if (key == "preview") {
+      if (!value.is_boolean()) throw UsageError("preview: expected true or false, got " + describe(value));
+      p.preview = value.get<bool>();
     } else {
       throw UsageError(describe(json(key)) + ": unknown parameter");
     }
@@ -209,7 +212,7 @@ MakeRequest parse_make_request(std::string_view body) {
   return request;
 }
 
-StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes) {
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces) {
   // Only the last component: a client's "../../x.obj" is a name for messages, not a path.
   const size_t slash = filename.find_last_of("/\\");
   std::string name(slash == std::string_view::npos ? filename : filename.substr(slash + 1));
@@ -218,7 +221,7 @@ StudioSurface load_studio_surface(std::string_view filename, std::string_view by
   if (format == MeshFormat::gltf) refuse_external_uris(bytes, name);
   PolygonMesh mesh = read_mesh(bytes, format, name);
   StudioSurface surface{.name = name, .input_vertices = mesh.num_vertices(), .input_faces = mesh.num_faces()};
-  surface.repaired = repair(std::move(mesh), name);
+  surface.repaired = repair(std::move(mesh), name, {.max_faces = max_faces});
   return surface;
 }
 
@@ -229,8 +232,52 @@ StudioSurface demo_surface() {
   return surface;
 }
 
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params) {
+namespace {
+
+// What a preview actually makes (StudioParams::preview).
+StudioParams effective(StudioParams params) {
+  if (!params.preview) return params;
+  params.job.curve.samples = std::min(params.job.curve.samples, 2);
+  params.levels = 0;
+  params.subdivide = 0;
+  return params;
+}
+
+} // namespace
+
+int64_t studio_result_size(const StudioSurface& surface, const StudioParams& requested) {
+  const StudioParams params = effective(requested);
+  const PolygonMesh& mesh = surface.repaired.mesh;
+  const int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size());
+  const int32_t edges = surface.repaired.connectivity.num_edges();
+  // Quads per quadrangulation (quadrangulate.h): one per edge, one per corner, the faces.
+  const auto quads = [&](Quadrangulation q) {
+    switch (q) {
+    case Quadrangulation::dual_simplest: return edges > 0 ? int64_t(edges) : corners;
+    case Quadrangulation::catmull_clark: return corners;
+    case Quadrangulation::none: return faces;
+    }
+    return corners;
+  };
+  const int64_t cycle = 2 * quads(params.job.quadrangulation); // triangles the cycle visits
+  const int64_t level_factor = int64_t(1) << (2 * params.levels);
+  switch (params.mode) {
+  case StudioMode::duotone: {
+    const int64_t texture = int64_t(params.tiles.texture_size) * params.tiles.texture_size / 2; // the atlas
+    return 4 * quads(params.job.quadrangulation) * (int64_t(1) << (2 * params.subdivide)) + texture;
+  }
+  case StudioMode::curve: return cycle * params.job.curve.samples;
+  case StudioMode::constant_wire: return cycle * params.job.curve.samples * 2 * params.sides;
+  case StudioMode::constant_ribbon: return cycle * params.job.curve.samples * 2;
+  case StudioMode::variable_wire: return cycle * 16 * level_factor;
+  case StudioMode::variable_ribbon: return cycle * 4 * level_factor;
+  }
+  return 0;
+}
+
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested) {
   const auto start = std::chrono::steady_clock::now();
+  const StudioParams params = effective(requested);
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
   if (mode == StudioMode::duotone) {
@@ -257,7 +304,11 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
     ConstantWireOptions options{.shape = shape, .radius = params.radius, .sides = params.sides, .curve = params.job.curve};
     if (options.radius == 0) {
-      options.radius = auto_wire_radius(result.curve.quads, result.curve.cycle, options);
+      // A preview takes the analytic bound: the check that grows it costs more than the wire.
+      options.radius =
+          params.preview
+              ? max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples)
+              : auto_wire_radius(result.curve.quads, result.curve.cycle, options);
       if (!(options.radius > 0))
         throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
     }
@@ -270,6 +321,8 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   }
   if (mode == StudioMode::curve) {
     result.triangles = int64_t(result.curve.cycle.order.size());
+  } else if (params.preview) {
+    for (int32_t f = 0; f < result.mesh.num_faces(); ++f) result.triangles += std::max(0, result.mesh.face_size(f) - 2);
   } else {
     result.report = check_printability(result.mesh, {.thickness = false});
     result.triangles = result.report.triangles;
@@ -281,6 +334,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
 std::string studio_stats_json(const StudioResult& result) {
   const Polylines& curves = result.curve.curves;
   json stats = {{"mode", mode_name(result.params.mode)},
+                {"preview", result.params.preview},
                 {"triangles", result.triangles},
                 {"curves", curves.start.size() - 1},
                 {"curve_points", curves.points.size()},
@@ -290,13 +344,15 @@ std::string studio_stats_json(const StudioResult& result) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();
   } else if (result.params.mode != StudioMode::curve) {
-    const PrintabilityReport& r = result.report;
-    stats["vertices"] = r.vertices;
-    stats["faces"] = r.faces;
-    stats["watertight"] = r.watertight;
-    stats["self_intersecting"] = r.self_intersecting;
-    stats["volume"] = r.volume;
-    stats["printable"] = r.printable();
+    stats["vertices"] = result.mesh.num_vertices();
+    stats["faces"] = result.mesh.num_faces();
+    if (!result.params.preview) {
+      const PrintabilityReport& r = result.report;
+      stats["watertight"] = r.watertight;
+      stats["self_intersecting"] = r.self_intersecting;
+      stats["volume"] = r.volume;
+      stats["printable"] = r.printable();
+    }
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;
   }

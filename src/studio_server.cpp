@@ -11,6 +11,7 @@
 #include <iterator>
 #include <map>
 #include <new>
+#include <string_view>
 
 namespace meander {
 
@@ -90,7 +91,37 @@ json surface_json(const std::string& session, const StudioSurface& surface) {
           {"notices", surface.repaired.notices}};
 }
 
+// Host names (with an optional :port) that name this server.
+bool names_this_server(const std::string& bound_host, int port, std::string_view host) {
+  const std::string with_port = std::string(":") + std::to_string(port);
+  if (host.ends_with(with_port)) host.remove_suffix(with_port.size());
+  if (host == "127.0.0.1" || host == "localhost" || host == "[::1]") return true;
+  if (bound_host.empty()) return false;
+  // An IPv6 address is written in brackets in a Host header.
+  if (bound_host.find(':') != std::string::npos)
+    return host.size() == bound_host.size() + 2 && host.front() == '[' && host.back() == ']' &&
+           host.substr(1, bound_host.size()) == bound_host;
+  return host == bound_host;
+}
+
 } // namespace
+
+std::string studio_request_refusal(const std::string& bound_host, int port, const std::string& method,
+                                   const std::string& host_header, const std::string* origin_header) {
+  const auto shown = [](const std::string& text) {
+    std::string quoted(1, '\'');
+    quoted.append(text, 0, 100);
+    return quoted += '\'';
+  };
+  if (!names_this_server(bound_host, port, host_header))
+    return "Host " + shown(host_header) +
+           " is not this server (expected 127.0.0.1, localhost or the --host address): a page on another site may be "
+           "trying to reach the studio";
+  if (method == "GET" || method == "HEAD" || !origin_header) return "";
+  const std::string& origin = *origin_header;
+  if (origin.starts_with("http://") && names_this_server(bound_host, port, std::string_view(origin).substr(7))) return "";
+  return "Origin " + shown(origin) + " is not this server's own page: cross-site requests are refused";
+}
 
 struct StudioServer::Impl {
   StudioServerOptions options;
@@ -99,6 +130,7 @@ struct StudioServer::Impl {
   fs::path scratch;
   std::atomic<uint64_t> downloads{0};
   std::atomic<uint64_t> revisions{0};
+  int port = 0; // once bound
   httplib::Server http;
 
   explicit Impl(StudioServerOptions o) : options(std::move(o)), page(read_page(options.page)), sessions(options.sessions) {
@@ -122,6 +154,14 @@ struct StudioServer::Impl {
   void routes() {
     http.set_payload_max_length(options.max_upload);
     http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
+    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      const std::string origin = req.get_header_value("Origin");
+      const std::string refusal = studio_request_refusal(options.host, port, req.method, req.get_header_value("Host"),
+                                                         req.has_header("Origin") ? &origin : nullptr);
+      if (refusal.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      send_error(res, 403, refusal);
+      return httplib::Server::HandlerResponse::Handled;
+    });
     // httplib answers 404 and 413 itself, with an empty body; say what happened.
     http.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
       if (!res.body.empty()) return;
@@ -138,6 +178,8 @@ struct StudioServer::Impl {
     http.Get("/api/info", [this](const httplib::Request&, httplib::Response& res) {
       send_json(res, 200,
                 {{"max_upload", options.max_upload},
+                 {"max_faces", options.max_faces},
+                 {"max_result", options.max_result},
                  {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}},
                  {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}}});
     });
@@ -147,7 +189,8 @@ struct StudioServer::Impl {
         if (!req.is_multipart_form_data() || !req.has_file("mesh"))
           throw UsageError("expected the mesh file as the multipart/form-data field 'mesh'");
         const httplib::MultipartFormData file = req.get_file_value("mesh");
-        add_session(res, load_studio_surface(file.filename.empty() ? "upload" : file.filename, file.content));
+        add_session(res, load_studio_surface(file.filename.empty() ? "upload" : file.filename, file.content,
+                                             options.max_faces));
       });
     });
 
@@ -160,6 +203,13 @@ struct StudioServer::Impl {
         const MakeRequest request = parse_make_request(req.body);
         const auto session = sessions.find(request.session);
         if (!session) return send_error(res, 404, "unknown session (it may have expired): upload the mesh again");
+        const int64_t size = studio_result_size(*session->surface, request.params);
+        if (size > options.max_result)
+          return send_error(res, 413,
+                            "this result would hold about " + std::to_string(size) +
+                                " curve points, triangles and texture pixels, more than this server's --max-result of " +
+                                std::to_string(options.max_result) +
+                                ": lower samples, sides, levels, subdivide or texture_size");
         std::lock_guard guard(session->lock);
         auto result = std::make_shared<const StudioResult>(make_studio_result(*session->surface, request.params));
         session->result = result;
@@ -212,10 +262,10 @@ int StudioServer::bind() {
   if (impl_->options.port == 0) {
     const int port = impl_->http.bind_to_any_port(impl_->options.host);
     if (port <= 0) throw IOError("cannot listen on " + where);
-    return port;
+    return impl_->port = port;
   }
   if (!impl_->http.bind_to_port(impl_->options.host, impl_->options.port)) throw IOError("cannot listen on " + where);
-  return impl_->options.port;
+  return impl_->port = impl_->options.port;
 }
 
 void StudioServer::run() { impl_->http.listen_after_bind(); }

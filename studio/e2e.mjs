@@ -72,20 +72,30 @@ try {
     levels.dispatchEvent(new Event('input', { bubbles: true }));
   });
   await page.selectOption('#mode', 'variable-wire');
-  await page.waitForFunction(() => window.studio.state.stats?.mode === 'variable-wire' && !window.studio.state.busy &&
-    !window.studio.state.pending, null,
+  await page.waitForFunction(() => window.studio.state.stats?.mode === 'variable-wire' && !window.studio.state.stats.preview &&
+    !window.studio.state.busy && !window.studio.state.pending, null,
     { timeout: 120000 });
   const before = await page.evaluate(() => ({ info: window.studio.resultInfo(), revision: window.studio.state.revision }));
   check(!before.info.lines && before.info.vertices > 0, 'variable wire shows a mesh');
 
-  await page.evaluate(() => {
+  // Dragging the slider ('input') shows a preview, without the printability report and
+  // not offered for download; letting it go ('change') brings the full result.
+  const slide = (type) => page.evaluate((t) => {
     const s = document.getElementById('s');
     s.value = '0.25';
-    s.dispatchEvent(new Event('input', { bubbles: true }));
-  });
+    s.dispatchEvent(new Event(t, { bubbles: true }));
+  }, type);
+  await slide('input');
   await settled(before.revision);
+  const preview = await page.evaluate(() => ({ stats: window.studio.state.stats, revision: window.studio.state.revision,
+    download: document.querySelector('a[data-file="result.stl"]').classList.contains('disabled') }));
+  check(preview.stats.preview === true && preview.stats.watertight === undefined && preview.download,
+    `dragging s shows a preview without the report and no download (${JSON.stringify(preview)})`);
+  await slide('change');
+  await settled(preview.revision);
   const after = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats,
     ms: window.studio.state.lastUpdateMs }));
+  check(after.stats.preview === false, 'letting s go brings the full result');
   const moved = Math.max(...[0, 1, 2].map((i) => Math.max(Math.abs(after.info.min[i] - before.info.min[i]),
     Math.abs(after.info.max[i] - before.info.max[i]))));
   check(moved > 1e-4 || after.info.vertices !== before.info.vertices,

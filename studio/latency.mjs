@@ -1,8 +1,9 @@
 // Measures the studio's live update end to end in the browser (docs/benchmarks.md):
 //   node latency.mjs MEANDER_BINARY MESH_FILE [MODE:LEVELS ...]
-// For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times and prints the median of the page's own
-// figure: from the request leaving to the new geometry in the scene (make + view.bin +
-// parsing), and the server's share.
+// For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times for a full
+// result and three times for a preview (what the page asks while a slider moves) and
+// prints the median of the page's own figure: from the request leaving to the new
+// geometry in the scene (make + view.bin + parsing), and the server's share.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -34,16 +35,19 @@ try {
     let revision = await page.evaluate(() => window.studio.state.revision);
     await set('mode', mode);
     await idle(revision);
-    const runs = [];
-    for (let seed = 2; seed <= 4; ++seed) {
-      revision = await page.evaluate(() => window.studio.state.revision);
-      await set('seed', String(seed));
-      await idle(revision);
-      runs.push(await page.evaluate(() => ({ total: window.studio.state.lastUpdateMs, server: window.studio.state.stats.seconds * 1000, triangles: window.studio.state.stats.triangles })));
+    for (const preview of [true, false]) {
+      const runs = [];
+      for (let seed = 2; seed <= 4; ++seed)
+        runs.push(await page.evaluate(async ([s, p]) => {
+          document.getElementById('seed').value = s;
+          await window.studio.make(p);
+          const { lastUpdateMs, stats } = window.studio.state;
+          return { total: lastUpdateMs, server: stats.seconds * 1000, triangles: stats.triangles, preview: stats.preview };
+        }, [String(seed + (preview ? 10 : 0)), preview]));
+      runs.sort((a, b) => a.total - b.total);
+      const m = runs[1];
+      console.log(`${mode} levels ${levels} ${m.preview ? 'preview' : 'full'}: ${m.triangles} triangles, end to end ${m.total.toFixed(0)} ms (server ${m.server.toFixed(0)} ms)`);
     }
-    runs.sort((a, b) => a.total - b.total);
-    const m = runs[1];
-    console.log(`${mode} levels ${levels}: ${m.triangles} triangles, end to end ${m.total.toFixed(0)} ms (server ${m.server.toFixed(0)} ms)`);
   }
 } finally {
   await browser.close();

@@ -16,17 +16,28 @@ namespace {
 
 using nlohmann::json;
 
+// A server on a free port, serving from its own thread until destroyed.
+struct RunningServer {
+  explicit RunningServer(StudioServerOptions options) : server(std::move(options)) {
+    port = server.bind();
+    thread = std::thread([this] { server.run(); });
+  }
+  ~RunningServer() {
+    server.stop();
+    thread.join();
+  }
+  StudioServer server;
+  int port = 0;
+  std::thread thread;
+};
+
 class StudioServerTest : public ::testing::Test {
 protected:
   void SetUp() override {
-    server_ = std::make_unique<StudioServer>(StudioServerOptions{.port = 0, .max_upload = 1 << 20});
-    port_ = server_->bind();
-    thread_ = std::thread([this] { server_->run(); });
+    running_ = std::make_unique<RunningServer>(StudioServerOptions{.port = 0, .max_upload = 1 << 20});
+    port_ = running_->port;
   }
-  void TearDown() override {
-    server_->stop();
-    thread_.join();
-  }
+  void TearDown() override { running_.reset(); }
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port_);
     c.set_read_timeout(120);
@@ -39,9 +50,8 @@ protected:
   }
   static std::string error_of(const httplib::Result& res) { return json::parse(res->body).value("error", ""); }
 
-  std::unique_ptr<StudioServer> server_;
+  std::unique_ptr<RunningServer> running_;
   int port_ = 0;
-  std::thread thread_;
 };
 
 TEST_F(StudioServerTest, RoundTripOnTheDemoModel) {
@@ -153,6 +163,103 @@ TEST_F(StudioServerTest, TwentyConcurrentRequestsSucceed) {
   ASSERT_TRUE(view);
   EXPECT_EQ(view->status, 200);
   EXPECT_EQ(view->body.substr(0, 4), "MNDR");
+}
+
+TEST(StudioRequestRefusal, HostMustNameThisServer) {
+  const std::string origin = "http://127.0.0.1:8080";
+  for (const char* host : {"127.0.0.1", "127.0.0.1:8080", "localhost:8080", "localhost", "[::1]:8080"})
+    EXPECT_EQ(studio_request_refusal("127.0.0.1", 8080, "POST", host, &origin), "") << host;
+  for (const char* host : {"evil.example", "evil.example:8080", "127.0.0.1:9090", "127.0.0.1.evil.example:8080", "",
+                           "192.168.1.5:8080", "localhost:8080:8080"})
+    EXPECT_NE(studio_request_refusal("127.0.0.1", 8080, "GET", host, nullptr).find("is not this server"), std::string::npos)
+        << host;
+  // --host 192.168.1.5: that address too, and an IPv6 one in brackets.
+  EXPECT_EQ(studio_request_refusal("192.168.1.5", 8080, "GET", "192.168.1.5:8080", nullptr), "");
+  EXPECT_EQ(studio_request_refusal("fd00::5", 8080, "GET", "[fd00::5]:8080", nullptr), "");
+  EXPECT_NE(studio_request_refusal("192.168.1.5", 8080, "GET", "evil.example:8080", nullptr), "");
+}
+
+TEST(StudioRequestRefusal, StateChangesNeedOurOwnOrigin) {
+  for (const char* origin : {"http://127.0.0.1:8080", "http://localhost:8080"}) {
+    const std::string o = origin;
+    EXPECT_EQ(studio_request_refusal("127.0.0.1", 8080, "POST", "127.0.0.1:8080", &o), "") << origin;
+  }
+  for (const char* origin : {"http://evil.example", "null", "https://127.0.0.1:8080", "http://127.0.0.1:9090",
+                             "http://evil.example:8080", ""}) {
+    const std::string o = origin;
+    EXPECT_NE(studio_request_refusal("127.0.0.1", 8080, "POST", "127.0.0.1:8080", &o).find("cross-site requests are refused"),
+              std::string::npos)
+        << origin;
+    EXPECT_EQ(studio_request_refusal("127.0.0.1", 8080, "GET", "127.0.0.1:8080", &o), "") << origin;
+  }
+  // Scripts (curl, Python) send no Origin.
+  EXPECT_EQ(studio_request_refusal("127.0.0.1", 8080, "POST", "127.0.0.1:8080", nullptr), "");
+}
+
+TEST_F(StudioServerTest, ForeignHostOrOriginGets403OverHttp) {
+  auto c = client();
+  const std::string port = std::to_string(port_);
+  // DNS rebinding: the browser sends the attacker's name as Host.
+  const auto rebound = c.Get("/api/info", {{"Host", "evil.example:" + port}});
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_NE(error_of(rebound).find("Host 'evil.example:" + port + "' is not this server"), std::string::npos) << rebound->body;
+  const auto page = c.Get("/", {{"Host", "evil.example:" + port}});
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 403);
+  // A cross-site POST from a page the user visits.
+  const auto forged = c.Post("/api/demo", {{"Origin", "http://evil.example"}}, "", "application/json");
+  ASSERT_TRUE(forged);
+  EXPECT_EQ(forged->status, 403);
+  EXPECT_EQ(error_of(forged), "Origin 'http://evil.example' is not this server's own page: cross-site requests are refused");
+  // The page itself, by either name.
+  for (const std::string& origin : {"http://127.0.0.1:" + port, "http://localhost:" + port}) {
+    const auto own = c.Post("/api/demo", {{"Origin", origin}}, "", "application/json");
+    ASSERT_TRUE(own);
+    EXPECT_EQ(own->status, 200) << origin << ": " << own->body;
+  }
+  const auto by_name = c.Get("/api/info", {{"Host", "localhost:" + port}});
+  ASSERT_TRUE(by_name);
+  EXPECT_EQ(by_name->status, 200);
+}
+
+TEST(StudioServerLimits, LargeUploadsAndResultsAreRefusedWithAMessage) {
+  RunningServer running({.port = 0, .max_faces = 2, .max_result = 200'000});
+  httplib::Client c("127.0.0.1", running.port);
+  c.set_read_timeout(120);
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+  const auto two = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", square, "square.obj", ""}});
+  ASSERT_TRUE(two);
+  EXPECT_EQ(two->status, 200) << two->body;
+  const auto three = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", square + "f 2 3 4\n", "three.obj", ""}});
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->status, 422);
+  EXPECT_EQ(json::parse(three->body)["error"], "three.obj: 3 faces, more than the limit of 2");
+  // The demo (1,600 faces) is the server's own; what a request asks of it is bounded.
+  const auto demo = c.Post("/api/demo", "", "application/json");
+  ASSERT_TRUE(demo);
+  const std::string session = json::parse(demo->body)["session"];
+  const auto fine = c.Post("/api/make", json{{"session", session}, {"mode", "variable-ribbon"}, {"levels", 0}}.dump(), "application/json");
+  ASSERT_TRUE(fine);
+  EXPECT_EQ(fine->status, 200) << fine->body;
+  for (const json& greedy : {json{{"mode", "variable-wire"}, {"levels", 6}}, json{{"mode", "curve"}, {"samples", 1000}},
+                             json{{"mode", "constant-wire"}, {"sides", 64}, {"samples", 16}},
+                             json{{"mode", "duotone"}, {"texture_size", 8192}}}) {
+    json request = greedy;
+    request["session"] = session;
+    const auto res = c.Post("/api/make", request.dump(), "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 413) << greedy.dump();
+    EXPECT_NE(json::parse(res->body)["error"].get<std::string>().find("more than this server's --max-result of 200000"),
+              std::string::npos)
+        << res->body;
+  }
+  // A preview of the same asks for little: levels 0.
+  const auto preview = c.Post("/api/make", json{{"session", session}, {"mode", "variable-wire"}, {"levels", 6}, {"preview", true}}.dump(),
+                              "application/json");
+  ASSERT_TRUE(preview);
+  EXPECT_EQ(preview->status, 200) << preview->body;
+  EXPECT_EQ(json::parse(preview->body)["preview"], true);
 }
 
 } // namespace

@@ -4,9 +4,11 @@
 #include "meander/io.h"
 #include "meander/shapes.h"
 #include "meander/studio.h"
+#include "meander/wire.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstring>
 #include <fstream>
@@ -123,6 +125,67 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
     EXPECT_FALSE(r.report.self_intersecting);
     const bool wire = params.mode == StudioMode::constant_wire || params.mode == StudioMode::variable_wire;
     EXPECT_EQ(r.report.watertight, wire);
+  }
+}
+
+TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
+  const StudioSurface surface = demo_surface();
+  for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {
+    for (const char* quad : {"dual-simplest", "catmull-clark"}) {
+      SCOPED_TRACE(std::string(mode) + " " + quad);
+      StudioParams params{.mode = parse_studio_mode(mode), .levels = 0, .tiles = {.texture_size = 256}};
+      params.job.quadrangulation = parse_quadrangulation(quad);
+      const StudioResult r = make_studio_result(surface, params);
+      const int64_t size = studio_result_size(surface, params);
+      if (params.mode == StudioMode::curve) EXPECT_EQ(size, int64_t(r.curve.curves.points.size()));
+      else if (params.mode == StudioMode::duotone) EXPECT_GE(size, r.triangles + 256 * 128);
+      else EXPECT_EQ(size, r.triangles);
+    }
+  }
+  // Levels, samples and subdivision multiply it as they multiply the work.
+  EXPECT_EQ(studio_result_size(surface, {.mode = StudioMode::variable_wire, .levels = 3}),
+            16 * studio_result_size(surface, {.mode = StudioMode::variable_wire, .levels = 1}));
+  StudioParams many{.mode = StudioMode::curve};
+  many.job.curve.samples = 1000;
+  EXPECT_EQ(studio_result_size(surface, many), 250 * studio_result_size(surface, {.mode = StudioMode::curve}));
+}
+
+TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
+  const StudioSurface surface = demo_surface();
+  StudioParams full{.mode = StudioMode::variable_wire, .levels = 2};
+  full.job.curve.samples = 8;
+  StudioParams preview = full;
+  preview.preview = true;
+  const StudioResult quick = make_studio_result(surface, preview);
+  EXPECT_EQ(quick.params.levels, 0);
+  EXPECT_EQ(quick.params.job.curve.samples, 2);
+  const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .levels = 0});
+  EXPECT_EQ(quick.triangles, level0.triangles);
+  EXPECT_EQ(studio_result_size(surface, preview), quick.triangles);
+  const auto stats = nlohmann::json::parse(studio_stats_json(quick));
+  EXPECT_EQ(stats["preview"], true);
+  EXPECT_FALSE(stats.contains("watertight"));
+  EXPECT_FALSE(stats.contains("self_intersecting"));
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(level0))["preview"], false);
+  // `radius auto` in a preview is the analytic bound, which the full result's check only grows.
+  const StudioResult wire = make_studio_result(surface, {.mode = StudioMode::constant_wire, .preview = true});
+  const StudioResult checked = make_studio_result(surface, {.mode = StudioMode::constant_wire});
+  EXPECT_GT(wire.radius, 0);
+  EXPECT_EQ(wire.radius, max_wire_radius(wire.curve.curves, 2));
+  EXPECT_GT(wire.radius, checked.radius / 2); // the bound is within about a third of the truth
+  EXPECT_LT(wire.radius, checked.radius * 2);
+  EXPECT_EQ(parse_make_request(R"({"session": "a", "preview": true})").params.preview, true);
+  EXPECT_EQ(message_of(R"({"session": "a", "preview": 1})"), "preview: expected true or false, got 1");
+}
+
+TEST(Studio, UploadsOverTheFaceLimitAreRefused) {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+  EXPECT_EQ(load_studio_surface("square.obj", square, 2).input_faces, 2);
+  try {
+    load_studio_surface("square.obj", square, 1);
+    FAIL() << "2 faces passed a limit of 1";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "square.obj: 2 faces, more than the limit of 1");
   }
 }
 

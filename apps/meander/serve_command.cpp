@@ -16,11 +16,18 @@ struct ServeArgs {
   std::string host = "127.0.0.1";
   int port = 8080;
   size_t max_upload = size_t(256) << 20;
+  int64_t max_faces = StudioServerOptions{}.max_faces;
+  int64_t max_result = StudioServerOptions{}.max_result;
   bool open = false;
 };
 
 void run_serve(const ServeArgs& a) {
-  StudioServer server({.host = a.host, .port = a.port, .max_upload = a.max_upload, .page = MEANDER_STUDIO_PAGE});
+  StudioServer server({.host = a.host,
+                       .port = a.port,
+                       .max_upload = a.max_upload,
+                       .page = MEANDER_STUDIO_PAGE,
+                       .max_faces = a.max_faces,
+                       .max_result = a.max_result});
   const int port = server.bind();
   const std::string url = "http://" + (a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host) + ":" +
                           std::to_string(port) + "/";
@@ -56,6 +63,11 @@ Command add_serve_command(CLI::App& parent) {
   app->add_option("--port", args->port, "TCP port (0: any free port)")->check(CLI::Range(0, 65535))->capture_default_str();
   app->add_option("--host", args->host, "address to listen on (127.0.0.1: this machine only)")->capture_default_str();
   app->add_option("--max-upload", args->max_upload, "largest request body in bytes (bigger uploads get HTTP 413)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--max-faces", args->max_faces, "largest mesh in faces (bigger uploads get HTTP 422)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--max-result", args->max_result,
+                  "largest result in curve points, triangles and texture pixels (bigger requests get HTTP 413)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app->add_flag("--open", args->open, "open the page in the default browser");
   return {app, [args] { run_serve(*args); }};

@@ -45,6 +45,10 @@ struct StudioParams {
   DuotoneRule rule = DuotoneRule::tree;
   TileOptions tiles;
   int subdivide = 0; // 0..5
+  // A preview while a slider moves: at most 2 curve samples per segment, levels and
+  // subdivide 0, `radius auto` as max_wire_radius (the analytic bound, unchecked), and no
+  // printability report. The page asks for the full result when the slider stops.
+  bool preview = false;
 };
 
 struct MakeRequest {
@@ -54,7 +58,7 @@ struct MakeRequest {
 
 // Parses the body of POST /api/make: a JSON object with "session" (required) and any
 // of "mode", "quad", "tree", "seed", "smooth", "samples", "radius" (number or "auto"),
-// "sides", "s", "t", "thickness", "levels", and for duotone "rule", "colors" ("C1,C2"
+// "sides", "s", "t", "thickness", "levels", "preview" (boolean), and for duotone "rule", "colors" ("C1,C2"
 // as --colors), "tiles", "texture_size", "subdivide"; absent keys keep their defaults. Throws
 // UsageError naming the key and what it expects ("s: expected a number in [0, 1], got
 // 1.5", "colour: unknown parameter") for anything else: malformed JSON, a value of the
@@ -74,8 +78,8 @@ struct StudioSurface {
 // or written to disk), and repairs it as `meander curve` does. OBJ, PLY, STL, OFF, GLB
 // and glTF with embedded data; a glTF that refers to files outside itself is refused.
 // Throws what read_mesh and repair throw (the CLI's messages), UsageError for another
-// extension.
-StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes);
+// extension, InputError for more faces than `max_faces` (0: no limit).
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces = 0);
 
 // The bundled demo model: `meander generate pretzel --faces 1600`, light enough that
 // every mode updates within about a second at the CLI's defaults.
@@ -95,16 +99,23 @@ struct StudioResult {
   double seconds = 0;    // making it, report included
 };
 
+// How many elements make_studio_result(surface, params) would hold at its largest: curve
+// points, triangles of the wire, ribbon or duotone surface, and texture pixels, counted
+// from the surface's faces, corners and edges before any work (exact for the dual of
+// Simplest and no quadrangulation, an upper bound for duotone), so that a server can
+// refuse a request whose samples, sides, levels or subdivision would exhaust memory.
+int64_t studio_result_size(const StudioSurface& surface, const StudioParams& params);
+
 // Runs the job on a copy of the surface: make_curve, then constant_wire (auto_wire_radius
 // when radius is 0) or variable_wire, then check_printability without the thickness rays
-// (the live view's stats); or make_duotone, duotone_surface (subdivided if asked) and
+// (the live view's stats; none for a preview); or make_duotone, duotone_surface (subdivided if asked) and
 // separating_curves. Throws what those throw; TopologyError when no radius avoids a
 // self-intersection, as `meander wire`.
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params);
 
-// The stats beside the view as JSON: mode, triangles, curves, curve_length, seconds,
-// for wires and ribbons vertices, faces, watertight, self_intersecting, volume,
-// printable, radius, and for duotone quads, faces, notes.
+// The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
+// for wires and ribbons vertices, faces, radius and (not for a preview, which has no
+// report) watertight, self_intersecting, volume, printable, and for duotone quads, faces, notes.
 std::string studio_stats_json(const StudioResult& result);
 
 // The files a result can be fetched as (GET /api/result/SESSION/NAME). The names are a

@@ -22,7 +22,21 @@ struct StudioServerOptions {
   // folder serves a notice in place of the page (the API still works).
   std::filesystem::path page;
   size_t sessions = 32; // kept at once; the oldest is dropped
+  // An upload of more faces is refused (422) before any work (RepairOptions::max_faces).
+  int64_t max_faces = 250'000;
+  // A make request whose result would hold more elements (studio_result_size: curve
+  // points, triangles, texture pixels) is refused (413) before any work.
+  int64_t max_result = 12'000'000;
 };
+
+// Whether a request may reach the API: its Host must name this server (127.0.0.1,
+// localhost or [::1] with or without `port`, or `bound_host` when that is another
+// address), so that a web page that rebinds its own DNS name to 127.0.0.1 is refused;
+// and a request that changes state (not GET or HEAD) that carries an Origin must come
+// from the server's own origin, http://HOST[:port] for such a host, so that another site
+// cannot post to it from the user's browser. Returns "" if allowed, else why not.
+std::string studio_request_refusal(const std::string& bound_host, int port, const std::string& method,
+                                   const std::string& host_header, const std::string* origin_header);
 
 class StudioServer {
 public:

@@ -126,6 +126,8 @@ function applySurfaceStyle() {
 const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, error: null, stats: null };
 window.studio = {
   state,
+  // The latency script (latency.mjs) times a preview and a full update through this.
+  make: (preview) => make(preview),
   // What the browser test reads: the result in the scene.
   resultInfo() {
     if (!resultObject) return null;
@@ -236,11 +238,13 @@ function params() {
   };
 }
 
-// One request at a time; changes made meanwhile are coalesced into one more request.
-async function make() {
+// One request at a time; changes made meanwhile are coalesced into one more request, for
+// the full result if any of them asked for it. A preview (a slider moving) is the
+// server's quick version: fewer samples and levels, no printability report.
+async function make(preview = false) {
   if (!state.session) return;
   if (state.busy) {
-    state.pending = true;
+    state.pending = state.pending === 'full' || !preview ? 'full' : 'preview';
     return;
   }
   state.pending = false;
@@ -248,7 +252,7 @@ async function make() {
   const start = performance.now();
   try {
     const stats = await (await api('/api/make', {
-      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(params()),
+      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...params(), preview }),
     })).json();
     const buffer = await (await api(`/api/result/${state.session}/view.bin`)).arrayBuffer();
     const { geometry, lines, textured } = parseView(buffer);
@@ -272,13 +276,14 @@ async function make() {
   } finally {
     setBusy(false);
     updateDownloads();
-    if (state.pending) make();
+    if (state.pending) make(state.pending === 'preview');
   }
 }
 
 function showStats(stats) {
   const yesNo = (b) => (b ? 'yes' : 'no');
   const rows = [
+    ['stats of', stats.preview ? 'preview (the full result follows when the slider is let go)' : 'full result'],
     ['triangles', stats.triangles.toLocaleString()],
     [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
     ['curve length', stats.curve_length.toPrecision(5)],
@@ -286,8 +291,8 @@ function showStats(stats) {
   if (stats.mode === 'duotone') {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
   } else if (stats.mode !== 'curve') {
-    rows.push(['faces', stats.faces.toLocaleString()], ['watertight', yesNo(stats.watertight)],
-      ['self-intersection', yesNo(stats.self_intersecting)]);
+    rows.push(['faces', stats.faces.toLocaleString()]);
+    if (!stats.preview) rows.push(['watertight', yesNo(stats.watertight)], ['self-intersection', yesNo(stats.self_intersecting)]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
@@ -297,7 +302,8 @@ function showStats(stats) {
 function updateDownloads() {
   const curve = $('mode').value === 'curve';
   for (const a of document.querySelectorAll('#downloads a')) {
-    const enabled = state.revision > 0 && !(curve && a.hasAttribute('data-mesh'));
+    // A preview is not offered for download: the full result follows it.
+    const enabled = state.revision > 0 && !state.stats?.preview && !(curve && a.hasAttribute('data-mesh'));
     a.classList.toggle('disabled', !enabled);
     a.href = enabled ? `/api/result/${state.session}/${a.dataset.file}` : '#';
     a.toggleAttribute('download', enabled);
@@ -306,9 +312,11 @@ function updateDownloads() {
 
 // ---- controls -----------------------------------------------------------------------------
 let debounce = null;
-function changed() {
+function changed(event) {
   clearTimeout(debounce);
-  debounce = setTimeout(make, 120);
+  // A slider being dragged fires 'input' (a preview); letting it go fires 'change' (the full result).
+  const preview = event?.type === 'input' && event.target.type === 'range';
+  debounce = setTimeout(() => make(preview), preview ? 30 : 120);
 }
 
 function showModeControls() {
@@ -324,8 +332,10 @@ for (const output of document.querySelectorAll('output[for]')) {
   show();
 }
 for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius', 'radius-auto', 'sides', 's', 't', 'thickness',
-  'levels', 'rule', 'color0', 'color1', 'tiles', 'texture-size', 'subdivide'])
+  'levels', 'rule', 'color0', 'color1', 'tiles', 'texture-size', 'subdivide']) {
   $(id).addEventListener('input', changed);
+  if ($(id).type === 'range') $(id).addEventListener('change', changed);
+}
 // Duotone starts from its command's default quads (Catmull-Clark topology), the others
 // from dual-simplest, as `meander duotone` and `meander curve`/`wire` do.
 let previousMode = $('mode').value;
