@@ -1,7 +1,9 @@
 #include "meander/curve.h"
 
+#include "io/polyline_stream.h"
 #include "meander/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -64,45 +66,81 @@ Vec3 catmull_rom(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, float u) {
 
 namespace {
 
+// Points per control polygon segment: options.samples, or 1 for the control polygon
+// itself. Validates what smooth_curves documents before any memory or file is touched.
+int points_per_segment(int32_t control_points, const CurveOptions& options) {
+  if (options.samples < 1) throw UsageError("--samples must be at least 1 (got " + std::to_string(options.samples) + ")");
+  const int k = options.smoothing == Smoothing::none ? 1 : options.samples;
+  if (double(control_points) * k > 2147483647.0)
+    throw UsageError("--samples " + std::to_string(k) + " would make more than 2^31 curve points");
+  return k;
+}
+
+// Where each curve starts among the sampled points: k points per control point.
+std::vector<int32_t> sampled_start(const std::vector<int32_t>& control_start, int k) {
+  std::vector<int32_t> start(control_start.size());
+  for (size_t i = 0; i < start.size(); ++i) start[i] = control_start[i] * k;
+  return start;
+}
+
+// Points [begin, end) of one closed curve of n control points, control point i being
+// point(i), k points per segment. A point depends only on its segment's four control
+// points, so any range can be sampled on its own and gives the same floats: blocks of a
+// curve are sampled in parallel, and a streaming writer samples whatever block it writes.
+template <typename Point>
+void sample_range(const Point& point, int32_t n, int k, Smoothing smoothing, int64_t begin, int64_t end, Vec3* dst) {
+  if (begin >= end) return;
+  auto at = [&](int64_t i) { return point(int32_t(i % n)); };
+  int64_t segment = begin / k;
+  int j = int(begin % k);
+  Vec3 p0 = at(segment + n - 1), p1 = at(segment), p2 = at(segment + 1), p3 = at(segment + 2);
+  for (int64_t q = begin; q < end; ++q) {
+    if (smoothing == Smoothing::none) {
+      *dst++ = p1;
+    } else {
+      const float u = float(j) / float(k);
+      *dst++ = smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+    }
+    if (++j == k && q + 1 < end) {
+      j = 0;
+      ++segment;
+      p0 = p1;
+      p1 = p2;
+      p2 = p3;
+      p3 = at(segment + 2);
+    }
+  }
+}
+
 // Samples closed curves whose control point i of curve k is point(start[k] + i), so
 // that the control polygon need not exist in memory.
 template <typename Point>
-Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& options, Point point) {
-  if (options.samples < 1) throw UsageError("--samples must be at least 1 (got " + std::to_string(options.samples) + ")");
-  const int k = options.smoothing == Smoothing::none ? 1 : options.samples;
-  if (double(start.back()) * k > 2147483647.0)
-    throw UsageError("--samples " + std::to_string(k) + " would make more than 2^31 curve points");
+Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& options, const Point& point) {
+  const int k = points_per_segment(start.back(), options);
   Polylines out;
   out.points.resize(size_t(start.back()) * size_t(k));
-  out.start.resize(start.size());
-  for (size_t i = 0; i < start.size(); ++i) out.start[i] = start[i] * k;
-  // Segments are independent given their four control points, so blocks of a curve are
-  // sampled in parallel, each starting its own window.
+  out.start = sampled_start(start, k);
   for (size_t c = 0; c + 1 < start.size(); ++c) {
     const int32_t first = start[c], n = start[c + 1] - first;
     Vec3* curve = out.points.data() + size_t(out.start[c]);
+    const auto control = [&](int32_t i) { return point(first + i); };
     tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<int32_t>& block) {
-      auto at = [&](int32_t i) { return point(first + i % n); };
-      Vec3 p0 = at(block.begin() + n - 1), p1 = at(block.begin()), p2 = at(block.begin() + 1), p3 = at(block.begin() + 2);
-      Vec3* dst = curve + size_t(block.begin()) * size_t(k);
-      for (int32_t i = block.begin(); i < block.end(); ++i) {
-        if (options.smoothing == Smoothing::none) {
-          *dst++ = p1;
-        } else {
-          for (int j = 0; j < k; ++j) {
-            const float u = float(j) / float(k);
-            *dst++ = options.smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
-          }
-        }
-        p0 = p1;
-        p1 = p2;
-        p2 = p3;
-        p3 = at(i + 3);
-      }
+      sample_range(control, n, k, options.smoothing, int64_t(block.begin()) * k, int64_t(block.end()) * k,
+                   curve + size_t(block.begin()) * size_t(k));
     });
   }
   return out;
 }
+
+// Control point i of the cycles, counted over all cycles in order.
+struct CycleControl {
+  const QuadMesh* quads;
+  const TriangleCycle* cycle;
+  Vec3 operator()(int32_t i) const {
+    const auto [p, apex, n] = cycle_triangle(*quads, cycle->order[size_t(i)]);
+    return control_point(quads->positions[size_t(p)], quads->positions[size_t(apex)], quads->positions[size_t(n)]);
+  }
+};
 
 } // namespace
 
@@ -111,10 +149,29 @@ Polylines smooth_curves(const Polylines& control, const CurveOptions& options) {
 }
 
 Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options) {
-  return sample_closed(cycle.cycle_start, options, [&](int32_t i) {
-    const auto [p, apex, n] = cycle_triangle(quads, cycle.order[size_t(i)]);
-    return control_point(quads.positions[size_t(p)], quads.positions[size_t(apex)], quads.positions[size_t(n)]);
-  });
+  return sample_closed(cycle.cycle_start, options, CycleControl{&quads, &cycle});
+}
+
+int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
+                           const std::filesystem::path& path) {
+  const int k = points_per_segment(cycle.cycle_start.back(), options);
+  io::PolylineStream out;
+  out.start = sampled_start(cycle.cycle_start, k);
+  out.points = [control = CycleControl{&quads, &cycle}, control_start = cycle.cycle_start, start = out.start, k,
+                smoothing = options.smoothing](int64_t begin, int64_t end, Vec3* dst) {
+    // The curve that holds point `begin`, then each curve the range runs into.
+    size_t c = size_t(std::upper_bound(start.begin(), start.end(), int32_t(begin)) - start.begin()) - 1;
+    while (begin < end) {
+      const int32_t first = control_start[c], n = control_start[c + 1] - first;
+      const int64_t stop = std::min<int64_t>(end, start[c + 1]);
+      sample_range([&](int32_t i) { return control(first + i); }, n, k, smoothing, begin - start[c], stop - start[c], dst);
+      dst += stop - begin;
+      begin = stop;
+      ++c;
+    }
+  };
+  io::write_polylines(out, path);
+  return out.start.back();
 }
 
 } // namespace meander

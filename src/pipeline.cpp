@@ -61,8 +61,10 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   watch.lap("quadrangulate");
   result.cycle = hamiltonian_cycle(result.quads, job.cycle);
   watch.lap("cycle");
-  result.curves = cycle_curves(result.quads, result.cycle, job.curve);
-  watch.lap("smooth");
+  if (job.sample) {
+    result.curves = cycle_curves(result.quads, result.cycle, job.curve);
+    watch.lap("smooth");
+  }
   return result;
 }
 

@@ -20,7 +20,10 @@ struct CurveArgs {
 };
 
 void run_curve(const CurveArgs& a) {
-  const CurveJob job = curve_job(a.curve);
+  CurveJob job = curve_job(a.curve);
+  // Only the picture needs the curve's points in memory; otherwise they are sampled as
+  // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
+  job.sample = !a.png.empty();
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -33,8 +36,15 @@ void run_curve(const CurveArgs& a) {
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
 
-  write_polylines(result.curves, a.output);
-  log.lap("write curve");
+  int64_t points = 0;
+  if (job.sample) {
+    write_polylines(result.curves, a.output);
+    points = int64_t(result.curves.points.size());
+    log.lap("write curve");
+  } else {
+    points = write_cycle_curves(result.quads, result.cycle, job.curve, a.output);
+    log.lap("smooth + write");
+  }
   if (!a.triangles.empty()) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
     log.lap("write cycle");
@@ -51,8 +61,9 @@ void run_curve(const CurveArgs& a) {
     picture_written = write_picture(scene, picture, a.picture, a.png);
     log.lap("render png");
   }
-  log.note("wrote " + a.output + ": " + std::to_string(result.curves.size()) + " closed curve" +
-           (result.curves.size() == 1 ? "" : "s") + ", " + std::to_string(result.curves.points.size()) + " points");
+  const int32_t curves = result.cycle.num_cycles();
+  log.note("wrote " + a.output + ": " + std::to_string(curves) + " closed curve" + (curves == 1 ? "" : "s") + ", " +
+           std::to_string(points) + " points");
   if (!a.triangles.empty())
     log.note("wrote " + a.triangles + ": " + std::to_string(result.cycle.num_triangles()) +
              " triangles in cycle order");

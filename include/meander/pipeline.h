@@ -23,6 +23,9 @@ struct CurveJob {
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
   CycleOptions cycle;
   CurveOptions curve;
+  // false: leave CurveResult::curves empty, for a caller that writes them with
+  // write_cycle_curves instead of holding them.
+  bool sample = true;
 };
 
 // Wall-clock seconds per stage, in the order the stages ran.

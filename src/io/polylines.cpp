@@ -1,4 +1,6 @@
+#include "io/block_writer.h"
 #include "io/formats.h"
+#include "io/polyline_stream.h"
 #include "io/reader_support.h"
 #include "meander/error.h"
 
@@ -8,11 +10,27 @@
 namespace meander {
 namespace {
 
-void write_obj_polylines(const Polylines& curves, io::AtomicFile& out) {
-  for (const Vec3& p : curves.points) {
-    out.text("v ");
-    io::write_point_line(out, p);
+// Points per block when a writer asks a PolylineStream for them: 768 KB, small beside
+// the curves it is for and large enough that the per-block cost does not show.
+constexpr int64_t block_points = 1 << 16;
+
+// Calls f(points) for the points [begin, end) of the stream, in order, a block at a time.
+template <class F> void for_each_block(const io::PolylineStream& curves, int64_t begin, int64_t end, F&& f) {
+  std::vector<Vec3> block(size_t(std::clamp<int64_t>(end - begin, 0, block_points)));
+  for (int64_t b = begin; b < end; b += block_points) {
+    const int64_t e = std::min(end, b + block_points);
+    curves.points(b, e, block.data());
+    f(std::span<const Vec3>(block.data(), size_t(e - b)));
   }
+}
+
+void write_obj_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
+  for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
+    for (const Vec3& p : points) {
+      out.text("v ");
+      io::write_point_line(out, p);
+    }
+  });
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[k], end = curves.start[k + 1];
     // An empty polyline has no element to write, and an open one of one point no line.
@@ -31,17 +49,30 @@ void write_obj_polylines(const Polylines& curves, io::AtomicFile& out) {
   }
 }
 
-void write_ply_polylines(const Polylines& curves, io::AtomicFile& out) {
+void write_ply_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
   // A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point has none.
   int64_t edges = 0;
   for (int32_t k = 0; k < curves.size(); ++k)
     if (const int32_t n = curves.start[k + 1] - curves.start[k]; n >= 2) edges += curves.closed(k) ? n : n - 1;
   out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
-  out.integer(int64_t(curves.points.size()));
+  out.integer(curves.start.back());
   out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
   out.integer(edges);
   out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
-  io::write_binary_points(out, curves.points);
+  // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
+  // all cores and written in order.
+  io::write_blocks(out, curves.start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
+    std::vector<Vec3> points(size_t(end - begin));
+    curves.points(begin, end, points.data());
+    bytes.resize(points.size() * 12);
+    char* at = bytes.data();
+    for (const Vec3& p : points) {
+      io::store_little_endian(at, p.x);
+      io::store_little_endian(at + 4, p.y);
+      io::store_little_endian(at + 8, p.z);
+      at += 12;
+    }
+  });
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[k], end = curves.start[k + 1];
     if (end - first < 2) continue;
@@ -52,31 +83,38 @@ void write_ply_polylines(const Polylines& curves, io::AtomicFile& out) {
   }
 }
 
-void write_json_polylines(const Polylines& curves, io::AtomicFile& out) {
+void write_json_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
   out.text("{\"polylines\": [");
   for (int32_t k = 0; k < curves.size(); ++k) {
     out.text(k == 0 ? "\n  " : ",\n  ");
     out.text(curves.closed(k) ? "{\"closed\": true, \"points\": [" : "{\"closed\": false, \"points\": [");
-    const std::span<const Vec3> points = curves.polyline(k);
-    for (size_t i = 0; i < points.size(); ++i) {
-      out.text(i == 0 ? "[" : ", [");
-      out.real(points[i].x);
-      out.put(',');
-      out.real(points[i].y);
-      out.put(',');
-      out.real(points[i].z);
-      out.put(']');
-    }
+    bool first = true;
+    for_each_block(curves, curves.start[k], curves.start[k + 1], [&](std::span<const Vec3> points) {
+      for (const Vec3& p : points) {
+        out.text(first ? "[" : ", [");
+        first = false;
+        out.real(p.x);
+        out.put(',');
+        out.real(p.y);
+        out.put(',');
+        out.real(p.z);
+        out.put(']');
+      }
+    });
     out.text("]}");
   }
   out.text(curves.size() > 0 ? "\n]}\n" : "]}\n");
 }
 
 // Looking down the -z axis: x to the right, y up (SVG's y grows downwards), the
-// drawing scaled to fit a page of 1000 units at the most on its longer side.
-void write_svg_polylines(const Polylines& curves, io::AtomicFile& out) {
+// drawing scaled to fit a page of 1000 units at the most on its longer side. The page
+// needs the bounding box first, so the points are asked for twice.
+void write_svg_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
   constexpr double page = 1000, margin = 20;
-  const Box3 box = bounding_box(curves.points);
+  Box3 box;
+  for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
+    for (const Vec3& p : points) box.extend(p);
+  });
   const double width = box.empty() ? 0 : double(box.max.x) - box.min.x;
   const double height = box.empty() ? 0 : double(box.max.y) - box.min.y;
   const double extent = std::max(width, height);
@@ -94,15 +132,18 @@ void write_svg_polylines(const Polylines& curves, io::AtomicFile& out) {
   out.fixed(page_height, decimals);
   out.text("\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"1\" stroke-linejoin=\"round\">\n");
   for (int32_t k = 0; k < curves.size(); ++k) {
-    const std::span<const Vec3> points = curves.polyline(k);
-    if (points.empty()) continue;
+    if (curves.start[k] == curves.start[k + 1]) continue;
     out.text("<path d=\"");
-    for (size_t i = 0; i < points.size(); ++i) {
-      out.text(i == 0 ? "M" : " L");
-      out.fixed(margin + (double(points[i].x) - box.min.x) * scale, decimals);
-      out.put(' ');
-      out.fixed(margin + (double(box.max.y) - points[i].y) * scale, decimals);
-    }
+    bool first = true;
+    for_each_block(curves, curves.start[k], curves.start[k + 1], [&](std::span<const Vec3> points) {
+      for (const Vec3& p : points) {
+        out.text(first ? "M" : " L");
+        first = false;
+        out.fixed(margin + (double(p.x) - box.min.x) * scale, decimals);
+        out.put(' ');
+        out.fixed(margin + (double(box.max.y) - p.y) * scale, decimals);
+      }
+    });
     out.text(curves.closed(k) ? " Z\"/>\n" : "\"/>\n");
   }
   out.text("</g>\n</svg>\n");
@@ -170,18 +211,27 @@ Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32
   return out;
 }
 
-void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
+void io::write_polylines(const io::PolylineStream& curves, const std::filesystem::path& path) {
   const std::string extension = io::lowercase_extension(path);
-  void (*write)(const Polylines&, io::AtomicFile&) = extension == ".obj"    ? write_obj_polylines
-                                                     : extension == ".ply"  ? write_ply_polylines
-                                                     : extension == ".json" ? write_json_polylines
-                                                     : extension == ".svg"  ? write_svg_polylines
-                                                                            : nullptr;
+  void (*write)(const io::PolylineStream&, io::AtomicFile&) = extension == ".obj"    ? write_obj_polylines
+                                                          : extension == ".ply"  ? write_ply_polylines
+                                                          : extension == ".json" ? write_json_polylines
+                                                          : extension == ".svg"  ? write_svg_polylines
+                                                                                 : nullptr;
   if (!write)
     throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply, .json or .svg)");
   io::AtomicFile out(path);
   write(curves, out);
   out.commit();
+}
+
+void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
+  io::write_polylines(io::PolylineStream{.start = curves.start,
+                                 .open = curves.open,
+                                 .points = [&](int64_t begin, int64_t end, Vec3* out) {
+                                   std::copy(curves.points.begin() + begin, curves.points.begin() + end, out);
+                                 }},
+                  path);
 }
 
 } // namespace meander

@@ -1,0 +1,33 @@
+// Polylines whose points are made when a writer asks for them, a block at a time, so that
+// curves too large to hold (120M points, 1.44 GB, for a 10M-triangle mesh at the default
+// 4 samples) are written without ever existing whole: write_cycle_curves in curve.h.
+#pragma once
+
+#include "meander/mesh.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <vector>
+
+namespace meander::io {
+
+// `start` and `open` as in Polylines; points(begin, end, out) writes the points [begin,
+// end) of all the polylines, counted in order, to out[0 .. end - begin). It gives the same
+// points whenever asked and may be called from several threads at once for disjoint ranges.
+struct PolylineStream {
+  std::vector<int32_t> start{0};
+  std::vector<uint8_t> open;
+  std::function<void(int64_t begin, int64_t end, Vec3* out)> points;
+
+  int32_t size() const { return int32_t(start.size()) - 1; }
+  bool closed(int32_t k) const { return open.empty() || open[k] == 0; }
+};
+
+// What write_polylines (meander/io.h) writes for the same points held in Polylines, byte
+// for byte (write_polylines is this with the points copied out of the Polylines); no more
+// than a few blocks of points exist at once. An SVG asks for every point twice, its page
+// being fitted to their bounding box first.
+void write_polylines(const PolylineStream& curves, const std::filesystem::path& path);
+
+} // namespace meander::io

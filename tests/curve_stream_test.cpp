@@ -1,0 +1,109 @@
+// write_cycle_curves samples the curve while it writes it, so that the points never all
+// exist at once; its file must be the one write_polylines writes from cycle_curves, byte
+// for byte, whatever the format, the smoothing, the samples and the number of curves.
+#include "test_support.h"
+
+#include "meander/curve.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/pipeline.h"
+#include "meander/shapes.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace meander::test {
+namespace {
+
+// A sphere and a torus side by side: one mesh, two components, two curves.
+PolygonMesh sphere_and_torus() {
+  PolygonMesh m = sphere(300);
+  const PolygonMesh t = torus(400);
+  const int32_t offset = m.num_vertices();
+  for (const Vec3& p : t.positions) m.positions.push_back(p + Vec3{5, 0, 0});
+  for (int32_t f = 0; f < t.num_faces(); ++f) {
+    std::vector<int32_t> face(t.face(f).begin(), t.face(f).end());
+    for (int32_t& v : face) v += offset;
+    m.add_face(face);
+  }
+  return m;
+}
+
+std::vector<std::pair<std::string, PolygonMesh>> meshes() {
+  std::vector<std::pair<std::string, PolygonMesh>> out = {
+      {"sphere", sphere(200)},
+      {"moebius", moebius(300)},
+      {"genus 2", genus_surface(2, 2000)},
+      {"sphere and torus", sphere_and_torus()},
+      // 45,000 quads, 90,000 control points: with 3 samples a segment straddles the
+      // writers' 65,536-point blocks.
+      {"large sphere", sphere(30000)},
+  };
+  if (std::filesystem::is_directory(shared_meshes()))
+    out.emplace_back("platonic_shelf.obj (5 components)", read_mesh(shared_meshes() / "platonic_shelf.obj"));
+  return out;
+}
+
+TEST(CurveStream, WritesTheSameBytesAsTheSampledCurve) {
+  const auto dir = output_dir();
+  const CurveOptions options[] = {{Smoothing::bspline, 4}, {Smoothing::bspline, 1}, {Smoothing::catmull_rom, 3},
+                                  {Smoothing::none, 4}};
+  for (const auto& [name, mesh] : meshes()) {
+    const CurveResult made = make_curve(mesh, {.cycle = {.seed = 7}});
+    for (const CurveOptions& option : options)
+      for (const std::string extension : {".ply", ".obj", ".json", ".svg"}) {
+        const std::string what = name + ", smoothing " + std::to_string(int(option.smoothing)) + ", samples " +
+                                 std::to_string(option.samples) + ", " + extension;
+        const Polylines curves = cycle_curves(made.quads, made.cycle, option);
+        write_polylines(curves, dir / ("held" + extension));
+        const int64_t points = write_cycle_curves(made.quads, made.cycle, option, dir / ("streamed" + extension));
+        EXPECT_EQ(points, int64_t(curves.points.size())) << what;
+        const std::string held = read_file(dir / ("held" + extension));
+        ASSERT_FALSE(held.empty()) << what;
+        EXPECT_TRUE(held == read_file(dir / ("streamed" + extension))) << what;
+      }
+  }
+}
+
+TEST(CurveStream, PipelineCanLeaveTheSamplingToTheWriter) {
+  const CurveResult sampled = make_curve(genus_surface(2, 2000), {.cycle = {.seed = 3}});
+  const CurveResult unsampled = make_curve(genus_surface(2, 2000), {.cycle = {.seed = 3}, .sample = false});
+  EXPECT_EQ(unsampled.curves.size(), 0);
+  EXPECT_TRUE(unsampled.curves.points.empty());
+  EXPECT_EQ(unsampled.cycle.order, sampled.cycle.order);
+  EXPECT_EQ(unsampled.cycle.cycle_start, sampled.cycle.cycle_start);
+}
+
+TEST(CurveStream, RefusesBadSamplesBeforeAnyFile) {
+  const CurveResult made = make_curve(sphere(200), {});
+  const auto out = output_dir() / "curve.ply";
+  EXPECT_THROW(write_cycle_curves(made.quads, made.cycle, {.samples = 0}, out), UsageError);
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// The CLI streams the curve unless it also renders it (--png needs the points in
+// memory): both ways give the same file.
+TEST(CurveStream, CliStreamedFileEqualsTheHeldOne) {
+  const auto dir = output_dir();
+  const auto in = dir / "in.ply";
+  write_mesh(sphere_and_torus(), in);
+  for (const std::vector<std::string> flags : {std::vector<std::string>{}, {"--smooth", "catmull-rom", "--samples", "2"},
+                                               {"--smooth", "none"}})
+    for (const std::string extension : {".ply", ".obj"}) {
+      std::vector<std::string> streamed = {"curve", in.string(), "-o", (dir / ("s" + extension)).string()};
+      std::vector<std::string> held = {"curve", in.string(), "-o", (dir / ("h" + extension)).string(),
+                                       "--png", (dir / "h.png").string(), "--size", "64x48"};
+      streamed.insert(streamed.end(), flags.begin(), flags.end());
+      held.insert(held.end(), flags.begin(), flags.end());
+      const CommandResult s = run_cli(streamed), h = run_cli(held);
+      ASSERT_EQ(s.exit_code, 0) << s.err;
+      ASSERT_EQ(h.exit_code, 0) << h.err;
+      const std::string held_bytes = read_file(dir / ("h" + extension));
+      ASSERT_FALSE(held_bytes.empty());
+      EXPECT_TRUE(held_bytes == read_file(dir / ("s" + extension))) << extension << " " << flags.size();
+    }
+}
+
+} // namespace
+} // namespace meander::test
