@@ -163,6 +163,11 @@ TEST(CliCurve, QuadModesRefuseBoundaries) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("need a closed mesh"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // The refusal names the file, as the readers' refusals do.
+  const auto sphere = shared_meshes() / "sphere.obj";
+  const CommandResult triangles = run_cli({"curve", sphere.string(), "-o", out.string(), "--quad", "none"});
+  EXPECT_EQ(triangles.exit_code, 1);
+  EXPECT_EQ(triangles.err.rfind("meander: " + sphere.string() + ": face 0 has 3 vertices: --quad none needs", 0), 0u) << triangles.err;
 }
 
 TEST(CliCurve, UsageErrorsExitWithTwoAndWriteNothing) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "meander/check.h"
+#include "meander/error.h"
 #include "meander/pipeline.h"
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,17 @@ CurveJob curve_job(const CurveFlags& flags);
 // each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.
 class StageLog;
 RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces = 0);
+
+// Runs work() on the mesh read from `input`. The library's topology refusals (a quad
+// mesh with boundary, a triangle under --quad none, ...) do not know the file; the
+// user should still read which one, as in the readers' messages.
+template <class F> auto about_input(const std::string& input, F&& work) -> decltype(work()) {
+  try {
+    return work();
+  } catch (const TopologyError& e) {
+    throw TopologyError(input + ": " + e.what());
+  }
+}
 
 // Prints "  stage    12.3 ms" lines on stderr when verbose.
 class StageLog {

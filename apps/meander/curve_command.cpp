@@ -32,7 +32,8 @@ void run_curve(const CurveArgs& a) {
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log, a.curve.max_faces);
   StageTimes times;
-  const CurveResult result = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
+  const CurveResult result =
+      about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
 

@@ -51,7 +51,8 @@ void run_wire(const WireArgs& a) {
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, a.strict, log, a.curve.max_faces);
   StageTimes times;
-  const CurveResult curve = make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times);
+  const CurveResult curve =
+      about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
 
@@ -64,7 +65,7 @@ void run_wire(const WireArgs& a) {
     }
     wire = constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
   } else {
-    wire = variable_wire(curve.quads, curve.cycle, variable);
+    wire = about_input(a.input, [&] { return variable_wire(curve.quads, curve.cycle, variable); });
   }
   log.lap("wire");
 
