@@ -18,16 +18,6 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-double surface_area(const PolygonMesh& m) {
-  double a = 0;
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    const auto v = m.face(f);
-    for (size_t k = 1; k + 1 < v.size(); ++k)
-      a += 0.5 * norm(cross(m.positions[size_t(v[k])] - m.positions[size_t(v[0])], m.positions[size_t(v[k + 1])] - m.positions[size_t(v[0])]));
-  }
-  return a;
-}
-
 TEST(CliDuotone, ObjWithMtlAndTextureCurveAndRegions) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const fs::path dir = output_dir();

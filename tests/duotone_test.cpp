@@ -331,16 +331,6 @@ std::set<Segment> boundary_segments(const PolygonMesh& m) {
   return out;
 }
 
-double area(const PolygonMesh& m) {
-  double a = 0;
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    const auto v = m.face(f);
-    for (size_t k = 1; k + 1 < v.size(); ++k)
-      a += 0.5 * norm(cross(m.positions[size_t(v[k])] - m.positions[size_t(v[0])], m.positions[size_t(v[k + 1])] - m.positions[size_t(v[0])]));
-  }
-  return a;
-}
-
 TEST(Duotone, RegionsAreManifoldsCutExactlyAlongTheCurve) {
   for (const Case& c : generated_cases())
     for (TileStyle style : {TileStyle::truchet, TileStyle::triangles}) {
@@ -369,12 +359,12 @@ TEST(Duotone, RegionsAreManifoldsCutExactlyAlongTheCurve) {
         EXPECT_EQ(report.non_manifold_edges, 0) << c.name << " region " << r;
         EXPECT_EQ(report.non_manifold_vertices, 0) << c.name << " region " << r;
         EXPECT_EQ(report.components.size(), size_t(c.components)) << c.name << " region " << r;
-        regions_area += area(regions[size_t(r)]);
+        regions_area += surface_area(regions[size_t(r)]);
         std::set<Segment> expected = curve_segments;
         if (r == 0) expected.insert(surface_boundary.begin(), surface_boundary.end());
         EXPECT_TRUE(boundary_segments(regions[size_t(r)]) == expected) << c.name << " region " << r;
       }
-      EXPECT_NEAR(regions_area, area(duotone_surface(d, {.texture_size = 64}).mesh), 1e-5 * regions_area) << c.name;
+      EXPECT_NEAR(regions_area, surface_area(duotone_surface(d, {.texture_size = 64}).mesh), 1e-5 * regions_area) << c.name;
     }
 }
 

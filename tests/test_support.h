@@ -2,6 +2,8 @@
 // per test, and running the CLI as a user would.
 #pragma once
 
+#include "meander/mesh.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,6 +15,9 @@ namespace meander::test {
 
 // ../shared/meshes (set by CMake); tests that need it skip when it is absent.
 std::filesystem::path shared_meshes();
+
+// The area of a polygon mesh, each face fanned from its first vertex.
+double surface_area(const PolygonMesh& mesh);
 
 #define MEANDER_REQUIRE_SHARED_MESHES()                                                                 \
   do {                                                                                                  \
