@@ -88,7 +88,7 @@ TEST(CurveStream, CliStreamedFileEqualsTheHeldOne) {
   const auto dir = output_dir();
   const auto in = dir / "in.ply";
   write_mesh(sphere_and_torus(), in);
-  for (const std::vector<std::string> flags : {std::vector<std::string>{}, {"--smooth", "catmull-rom", "--samples", "2"},
+  for (const std::vector<std::string>& flags : {std::vector<std::string>{}, {"--smooth", "catmull-rom", "--samples", "2"},
                                                {"--smooth", "none"}})
     for (const std::string extension : {".ply", ".obj"}) {
       std::vector<std::string> streamed = {"curve", in.string(), "-o", (dir / ("s" + extension)).string()};
