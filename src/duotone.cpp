@@ -168,7 +168,10 @@ std::vector<uint8_t> tree_diagonals(const QuadMesh& m, const std::vector<uint8_t
 
 } // namespace
 
-Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneOptions& options) {
+Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& given, const DuotoneOptions& options) {
+  const bool fits = given.halfedge_edge.size() == mesh.face_vertices.size() && !given.edge_start.empty();
+  const Connectivity rebuilt = fits ? Connectivity() : build_connectivity(mesh);
+  const Connectivity& connectivity = fits ? given : rebuilt;
   Duotone d;
   d.quadrangulation = options.quadrangulation;
   d.quads = duotone_quads(mesh, connectivity, d.quadrangulation, d.notes);

@@ -281,9 +281,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
   if (mode == StudioMode::duotone) {
-    const Connectivity& given = surface.repaired.connectivity;
-    const Connectivity connectivity = given.edge_start.empty() ? build_connectivity(surface.repaired.mesh) : given;
-    Duotone duotone = make_duotone(surface.repaired.mesh, connectivity,
+    Duotone duotone = make_duotone(surface.repaired.mesh, surface.repaired.connectivity,
                                    {.quadrangulation = params.job.quadrangulation, .rule = params.rule,
                                     .tree = params.job.cycle.tree, .seed = params.job.cycle.seed});
     TexturedMesh painted = duotone_surface(duotone, params.tiles);

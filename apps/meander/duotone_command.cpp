@@ -50,8 +50,7 @@ void run_duotone(const DuotoneArgs& a) {
   StageLog log(a.verbose);
   const RepairResult input = read_and_repair(a.input, a.strict, log);
   log.restart();
-  const Connectivity connectivity = input.connectivity.edge_start.empty() ? build_connectivity(input.mesh) : input.connectivity;
-  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, connectivity, options); });
+  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
   TexturedMesh surface = duotone_surface(duotone, tiles);

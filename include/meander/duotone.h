@@ -74,7 +74,8 @@ inline int duotone_diagonal_color(const Duotone& d, int32_t q) {
 }
 
 // Builds the duotone of a mesh that repair() accepted (manifold edges), with its edge
-// connectivity. Works on any genus, orientable or not, with several components; with
+// connectivity (RepairResult::connectivity; an empty or mismatched one is rebuilt, as in
+// make_curve). Works on any genus, orientable or not, with several components; with
 // boundary as the header comment says. O(corners) plus the spanning forest.
 // Throws TopologyError for `none` on a mesh that is not all quads, has boundary, or
 // whose vertices cannot be 2-coloured (naming a quad on an odd cycle), and what the
