@@ -472,7 +472,12 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
   };
   for (int32_t s = 0; s < sheets.size(); ++s)
     if (!sheets.orientable[size_t(s)]) components[size_t(component_of_sheet[size_t(s)])].orientable = false;
-  for (int32_t f = 0; f < m.num_faces(); ++f) ++component(f).faces;
+  report.face_components.resize(size_t(m.num_faces()));
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const int32_t k = component_of_sheet[size_t(sheets.sheet[size_t(f)])];
+    report.face_components[size_t(f)] = k;
+    ++components[size_t(k)].faces;
+  }
   for (int32_t e = 0; e < c.num_edges(); ++e) {
     ComponentReport& k = component(c.halfedge_face[size_t(c.halfedges(e)[0])]);
     ++k.edges;
@@ -575,6 +580,10 @@ MeshReport inspect(const PolygonMesh& mesh) {
     std::vector<int32_t> origin;
     clean_faces(polygons, origin);
     inspect_topology(polygons, report);
+    // Back to the input's face numbers.
+    std::vector<int32_t> face_components(size_t(nf), -1);
+    for (size_t f = 0; f < origin.size(); ++f) face_components[size_t(origin[f])] = report.face_components[f];
+    report.face_components = std::move(face_components);
   }
   return report;
 }

@@ -2,10 +2,8 @@
 
 #include "io/atomic_file.h"
 #include "meander/check.h"
-#include "meander/connectivity.h"
 #include "meander/error.h"
 #include "triangle_bvh.h"
-#include "union_find.h"
 
 #include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
@@ -36,25 +34,43 @@ double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 int sign(double v) { return (v > 0) - (v < 0); }
 
-// +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to. The sign
-// in double is kept where it clears Shewchuk's error bound for this expression; below it
-// (d almost in the plane, as nearly coplanar faces of smooth ribbons are) the
-// determinant is recomputed in quadruple precision from the float coordinates, which
-// resolves it unless d is within ~1e-30 relative of the plane.
-int orient3d(P3 a, P3 b, P3 c, P3 d) {
-  const P3 ba = b - a, ca = c - a, da = d - a;
-  const double det = dot(cross(ba, ca), da);
-  const double permanent = (std::abs(ba.y * ca.z) + std::abs(ba.z * ca.y)) * std::abs(da.x) +
-                           (std::abs(ba.z * ca.x) + std::abs(ba.x * ca.z)) * std::abs(da.y) +
-                           (std::abs(ba.x * ca.y) + std::abs(ba.y * ca.x)) * std::abs(da.z);
-  if (std::abs(det) > 7.771561172376103e-16 * permanent) return sign(det);
-  using Q = __float128;
-  const Q bx = Q(b.x) - Q(a.x), by = Q(b.y) - Q(a.y), bz = Q(b.z) - Q(a.z);
-  const Q cx = Q(c.x) - Q(a.x), cy = Q(c.y) - Q(a.y), cz = Q(c.z) - Q(a.z);
-  const Q dx = Q(d.x) - Q(a.x), dy = Q(d.y) - Q(a.y), dz = Q(d.z) - Q(a.z);
-  const Q q = (by * cz - bz * cy) * dx + (bz * cx - bx * cz) * dy + (bx * cy - by * cx) * dz;
-  return (q > 0) - (q < 0);
-}
+// The plane through a, b, c, to tell on which side points lie. The cross product and
+// the per-axis terms of the error bound are computed once per plane: a pair of
+// triangles tests up to six points against each one's plane, and the pair search tests
+// tens of millions of pairs.
+struct Plane {
+  P3 a, b, c;
+  P3 normal;    // (b - a) x (c - a)
+  P3 magnitude; // per coordinate of the normal, the sum of the absolute products it is made of
+  Plane(P3 a_, P3 b_, P3 c_) : a(a_), b(b_), c(c_) {
+    const P3 ba = b - a, ca = c - a;
+    normal = cross(ba, ca);
+    magnitude = {std::abs(ba.y * ca.z) + std::abs(ba.z * ca.y), std::abs(ba.z * ca.x) + std::abs(ba.x * ca.z),
+                 std::abs(ba.x * ca.y) + std::abs(ba.y * ca.x)};
+  }
+
+  // +1 if d lies on the side the normal points to, -1 on the other, 0 in the plane. The
+  // sign in double is kept where it clears Shewchuk's error bound for this expression;
+  // below it (d almost in the plane, as nearly coplanar faces of smooth ribbons are) the
+  // determinant is recomputed in quadruple precision from the float coordinates, which
+  // resolves it unless d is within ~1e-30 relative of the plane.
+  int side(P3 d) const {
+    const P3 da = d - a;
+    const double det = dot(normal, da);
+    const double permanent = magnitude.x * std::abs(da.x) + magnitude.y * std::abs(da.y) + magnitude.z * std::abs(da.z);
+    if (std::abs(det) > 7.771561172376103e-16 * permanent) return sign(det);
+    using Q = __float128;
+    const Q bx = Q(b.x) - Q(a.x), by = Q(b.y) - Q(a.y), bz = Q(b.z) - Q(a.z);
+    const Q cx = Q(c.x) - Q(a.x), cy = Q(c.y) - Q(a.y), cz = Q(c.z) - Q(a.z);
+    const Q dx = Q(d.x) - Q(a.x), dy = Q(d.y) - Q(a.y), dz = Q(d.z) - Q(a.z);
+    const Q q = (by * cz - bz * cy) * dx + (bz * cx - bx * cz) * dy + (bx * cy - by * cx) * dz;
+    return (q > 0) - (q < 0);
+  }
+};
+
+// +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to (see
+// Plane::side).
+int orient3d(P3 a, P3 b, P3 c, P3 d) { return Plane(a, b, c).side(d); }
 
 // The axis along which the normal of (a, b, c) is largest: dropping it projects the
 // triangle's plane onto a coordinate plane without collapsing it.
@@ -95,9 +111,10 @@ bool inside_triangle_2d(P3 p, P3 a, P3 b, P3 c, int axis) {
   return !((o1 < 0 || o2 < 0 || o3 < 0) && (o1 > 0 || o2 > 0 || o3 > 0));
 }
 
-// The closed segment st meets the closed triangle abc (not degenerate).
-bool segment_meets_triangle(P3 s, P3 t, P3 a, P3 b, P3 c) {
-  const int ds = orient3d(a, b, c, s), dt = orient3d(a, b, c, t);
+// The closed segment st meets the closed triangle abc (not degenerate), given the sides
+// of abc's plane that s and t lie on (ds, dt: Plane::side).
+bool segment_meets_triangle(P3 s, P3 t, int ds, int dt, const Plane& abc) {
+  const P3 a = abc.a, b = abc.b, c = abc.c;
   if (ds * dt > 0) return false;
   if (ds == 0 && dt == 0) {
     const int axis = dominant_axis(a, b, c);
@@ -119,22 +136,23 @@ bool segment_meets_triangle(P3 s, P3 t, P3 a, P3 b, P3 c) {
 // is convex and its extreme points lie on edges, so some edge of one meets the other:
 // six segment tests after the cheap rejection by the planes.
 bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
-  const int a0 = orient3d(u[0], u[1], u[2], t[0]), a1 = orient3d(u[0], u[1], u[2], t[1]),
-            a2 = orient3d(u[0], u[1], u[2], t[2]);
-  if (a0 == a1 && a1 == a2 && a0 != 0) return false;
-  const int b0 = orient3d(t[0], t[1], t[2], u[0]), b1 = orient3d(t[0], t[1], t[2], u[1]),
-            b2 = orient3d(t[0], t[1], t[2], u[2]);
-  if (b0 == b1 && b1 == b2 && b0 != 0) return false;
+  const Plane pu(u[0], u[1], u[2]);
+  const int a[3] = {pu.side(t[0]), pu.side(t[1]), pu.side(t[2])}; // t's corners against u's plane
+  if (a[0] == a[1] && a[1] == a[2] && a[0] != 0) return false;
+  const Plane pt(t[0], t[1], t[2]);
+  const int b[3] = {pt.side(u[0]), pt.side(u[1]), pt.side(u[2])};
+  if (b[0] == b[1] && b[1] == b[2] && b[0] != 0) return false;
   for (int k = 0; k < 3; ++k)
-    if (segment_meets_triangle(t[k], t[(k + 1) % 3], u[0], u[1], u[2]) ||
-        segment_meets_triangle(u[k], u[(k + 1) % 3], t[0], t[1], t[2]))
+    if (segment_meets_triangle(t[k], t[(k + 1) % 3], a[k], a[(k + 1) % 3], pu) ||
+        segment_meets_triangle(u[k], u[(k + 1) % 3], b[k], b[(k + 1) % 3], pt))
       return true;
   return false;
 }
 
-// Direction a - v lies in the closed wedge of triangle (v, c, d) at v, a in its plane.
-bool in_wedge(P3 v, P3 a, P3 c, P3 d) {
-  if (orient3d(v, c, d, a) != 0) return false;
+// Direction a - v lies in the closed wedge of triangle (v, c, d) at v, given the side of
+// that triangle's plane a lies on (Plane::side).
+bool in_wedge(P3 v, P3 a, int side, P3 c, P3 d) {
+  if (side != 0) return false;
   const int axis = dominant_axis(v, c, d);
   const int s = orient2d(v, c, d, axis);
   return orient2d(v, c, a, axis) * s >= 0 && orient2d(v, a, d, axis) * s >= 0;
@@ -146,13 +164,15 @@ bool in_wedge(P3 v, P3 a, P3 c, P3 d) {
 // the other's plane and inside its wedge.
 bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
   // Usual on a smooth surface: one triangle lies strictly on one side of the other's
-  // plane except at v, so they cannot meet elsewhere.
-  const int sc = orient3d(v, a, b, c), sd = orient3d(v, a, b, d);
+  // plane except at v, so they cannot meet elsewhere. One plane and two signs decide it.
+  const Plane vab(v, a, b);
+  const int sc = vab.side(c), sd = vab.side(d);
   if (sc * sd > 0) return false;
-  const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
+  const Plane vcd(v, c, d);
+  const int sa = vcd.side(a), sb = vcd.side(b);
   if (sa * sb > 0) return false;
-  return segment_meets_triangle(a, b, v, c, d) || segment_meets_triangle(c, d, v, a, b) || in_wedge(v, a, c, d) ||
-         in_wedge(v, b, c, d) || in_wedge(v, c, a, b) || in_wedge(v, d, a, b);
+  return segment_meets_triangle(a, b, sa, sb, vcd) || segment_meets_triangle(c, d, sc, sd, vab) ||
+         in_wedge(v, a, sa, c, d) || in_wedge(v, b, sb, c, d) || in_wedge(v, c, sc, a, b) || in_wedge(v, d, sd, a, b);
 }
 
 // Triangles (u, w, a) and (u, w, b) sharing the edge uw meet beyond it iff they fold
@@ -242,85 +262,25 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
   return {tris.face[size_t(first >> 32)], tris.face[size_t(first & 0xffffffffu)]};
 }
 
-// Components of the faces joined across edges (shared by any number of faces), numbered
-// by their first face, with V - E + F, closedness and signed volume.
-std::vector<int32_t> label_components(const PolygonMesh& mesh, const Connectivity& c, int32_t& count) {
-  UnionFind sets(mesh.num_faces());
-  for (int32_t e = 0; e < c.num_edges(); ++e) {
-    const std::span<const int32_t> hs = c.halfedges(e);
-    for (size_t k = 1; k < hs.size(); ++k) sets.unite(c.halfedge_face[size_t(hs[0])], c.halfedge_face[size_t(hs[k])]);
-  }
-  std::vector<int32_t> label(size_t(mesh.num_faces())), number(size_t(mesh.num_faces()), -1);
-  count = 0;
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-    int32_t& id = number[size_t(sets.find(f))];
-    if (id < 0) id = count++;
-    label[size_t(f)] = id;
-  }
-  return label;
-}
-
-// Fills report.components and report.volume; returns the component of each input face
-// (-1 for a face that repeats a vertex).
-std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles& tris, bool degenerate_faces,
-                                        PrintabilityReport& report) {
-  // Faces that repeat a vertex have no place in an edge structure; they are not part of
-  // a watertight mesh anyway (inspect() counts them), so a copy leaves them out when
-  // there are any.
-  PolygonMesh cleaned;
-  std::vector<int32_t> original; // face of `mesh` for each face of `cleaned`
-  if (degenerate_faces) {
-    cleaned.positions = mesh.positions;
-    std::vector<int32_t> sorted;
-    for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-      const std::span<const int32_t> v = mesh.face(f);
-      sorted.assign(v.begin(), v.end());
-      std::sort(sorted.begin(), sorted.end());
-      if (v.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-      cleaned.add_face(v);
-      original.push_back(f);
-    }
-  }
-  const PolygonMesh& polygons = degenerate_faces ? cleaned : mesh;
-  const Connectivity c = build_connectivity(polygons);
-  int32_t count = 0;
-  const std::vector<int32_t> label = label_components(polygons, c, count);
+// Fills report.components and report.volume from inspect()'s components: the
+// connectivity they need is built once, there.
+void measure_components(const PolygonMesh& mesh, const Triangles& tris, const MeshReport& topology,
+                        PrintabilityReport& report) {
   std::vector<SolidComponent>& components = report.components;
-  components.assign(size_t(count), SolidComponent{});
-  for (auto& k : components) k.closed = true;
-  for (int32_t f = 0; f < polygons.num_faces(); ++f) ++components[size_t(label[size_t(f)])].faces;
-  for (int32_t e = 0; e < c.num_edges(); ++e) {
-    SolidComponent& k = components[size_t(label[size_t(c.halfedge_face[size_t(c.halfedges(e)[0])])])];
-    --k.euler_characteristic;
-    if (c.edge_degree(e) == 1) k.closed = false;
-  }
-  // Vertices: once per component they belong to. Nearly every vertex is in one; those
-  // met again from another component are sorted out apart.
-  std::vector<int32_t> first_component(size_t(mesh.num_vertices()), -1);
-  std::vector<std::pair<int32_t, int32_t>> shared;
-  for (int32_t f = 0; f < polygons.num_faces(); ++f)
-    for (const int32_t v : polygons.face(f)) {
-      int32_t& first = first_component[size_t(v)];
-      if (first < 0) first = label[size_t(f)];
-      else if (first != label[size_t(f)]) shared.emplace_back(v, label[size_t(f)]);
-    }
-  std::sort(shared.begin(), shared.end());
-  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
-  for (const int32_t k : first_component)
-    if (k >= 0) ++components[size_t(k)].euler_characteristic;
-  for (const auto& [v, k] : shared) ++components[size_t(k)].euler_characteristic;
-  for (SolidComponent& k : components) k.euler_characteristic += k.faces;
+  components.reserve(topology.components.size());
+  for (const ComponentReport& k : topology.components)
+    components.push_back({.faces = k.faces,
+                          .euler_characteristic = k.euler_characteristic,
+                          .genus = k.genus,
+                          .closed = k.boundary_loops == 0});
 
   // Volume: the divergence theorem over the fan triangles, each the signed volume of its
   // tetrahedron with the origin. Relative to a point near the mesh (the box's centre) to
   // keep the terms small when the model sits far from the origin.
-  std::vector<int32_t> component_of_face(size_t(mesh.num_faces()), -1);
-  for (int32_t f = 0; f < polygons.num_faces(); ++f)
-    component_of_face[size_t(degenerate_faces ? original[size_t(f)] : f)] = label[size_t(f)];
   const Box3& box = report.bounding_box;
   const P3 centre = box.empty() ? P3{0, 0, 0} : to_p3((box.min + box.max) * 0.5f);
   for (size_t i = 0; i < tris.corners.size(); ++i) {
-    const int32_t k = component_of_face[size_t(tris.face[i])];
+    const int32_t k = topology.face_components[size_t(tris.face[i])];
     if (k < 0) continue;
     const std::array<int32_t, 3>& t = tris.corners[i];
     const P3 a = to_p3(mesh.positions[size_t(t[0])]) - centre, b = to_p3(mesh.positions[size_t(t[1])]) - centre,
@@ -328,7 +288,6 @@ std::vector<int32_t> measure_components(const PolygonMesh& mesh, const Triangles
     components[size_t(k)].volume += dot(a, cross(b, cc)) / 6;
   }
   for (const SolidComponent& k : components) report.volume += k.volume;
-  return component_of_face;
 }
 
 // Embree's ray context with what its filter needs to leave out the triangles around the
@@ -480,7 +439,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
 
   const Triangles tris = fan(mesh);
   report.triangles = int64_t(tris.corners.size());
-  const std::vector<int32_t> component = measure_components(mesh, tris, topology.degenerate_faces > 0, report);
+  measure_components(mesh, tris, topology, report);
 
   std::vector<uint8_t> skip(tris.corners.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
@@ -499,7 +458,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     report.thickness_checked = true;
     std::vector<int8_t> inward(size_t(mesh.num_faces()), 0);
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
-      if (const int32_t k = component[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
+      if (const int32_t k = topology.face_components[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
     min_thickness(mesh, tris, inward, report);
   }
   return report;

@@ -323,6 +323,22 @@ TEST(CheckInspect, FaceWithRepeatedConsecutiveIndex) {
   EXPECT_EQ(r.components[0].genus, 0);
 }
 
+// Each input face names its component, in the input's face numbers even where faces
+// were left out of the topology (check_printability sums volumes with them).
+TEST(CheckInspect, FaceComponentsFollowTheInputFaces) {
+  PolygonMesh m = two_tetrahedra_sharing_a_vertex();
+  m.add_face({0, 0, 1}); // fewer than 3 vertices once collapsed: left out
+  const int32_t collapsed = m.num_faces();
+  m.add_face({1, 2, 2, 3}); // collapsed to a triangle of the first tetrahedron: kept
+  const MeshReport r = inspect(m);
+  ASSERT_EQ(r.face_components.size(), size_t(m.num_faces()));
+  ASSERT_EQ(r.components.size(), 2u);
+  for (int32_t f = 0; f < 4; ++f) EXPECT_EQ(r.face_components[size_t(f)], 0);
+  for (int32_t f = 4; f < 8; ++f) EXPECT_EQ(r.face_components[size_t(f)], 1);
+  EXPECT_EQ(r.face_components[size_t(collapsed - 1)], -1);
+  EXPECT_EQ(r.face_components[size_t(collapsed)], 0);
+}
+
 // Vertices no face uses take no part in the topology or the bounding box.
 TEST(CheckInspect, UnreferencedVertices) {
   PolygonMesh m = tetrahedron();

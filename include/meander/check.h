@@ -67,6 +67,11 @@ struct MeshReport {
   bool orientable = true;            // every component is
   Box3 bounding_box;                 // of the referenced vertices with finite positions
   std::vector<ComponentReport> components; // numbered by their first face
+  // Per input face: its index in `components`, or -1 for a face left out of the topology
+  // (an index out of range, or fewer than 3 distinct vertices once repeated consecutive
+  // ones are collapsed). Lets a caller sum over components without building the
+  // connectivity again (check_printability's volumes).
+  std::vector<int32_t> face_components;
 };
 
 // Inspects the mesh; never throws on a bad mesh (that is what it reports), whatever its
