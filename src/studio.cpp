@@ -300,18 +300,19 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   result.curve_length = total_length(result.curve.curves);
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
   if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
-    ConstantWireOptions options{.shape = shape, .radius = params.radius, .sides = params.sides, .curve = params.job.curve};
-    if (options.radius == 0) {
-      // A preview takes the analytic bound: the check that grows it costs more than the wire.
-      options.radius =
-          params.preview
-              ? max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples)
-              : auto_wire_radius(result.curve.quads, result.curve.cycle, options);
-      if (!(options.radius > 0))
-        throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
-    }
-    result.radius = options.radius;
-    result.mesh = constant_wire(result.curve.quads, result.curve.cycle, options);
+    std::optional<double> radius; // none: auto, checked by constant_wire
+    if (params.radius > 0) radius = params.radius;
+    // A preview takes the analytic bound for auto: the check that grows it costs more than the wire.
+    else if (params.preview)
+      radius = max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples);
+    ConstantWire made;
+    if (!radius || *radius > 0)
+      made = constant_wire(result.curve.quads, result.curve.cycle,
+                           {.shape = shape, .radius = radius, .sides = params.sides, .curve = params.job.curve});
+    if (!(made.radius > 0))
+      throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
+    result.radius = made.radius;
+    result.mesh = std::move(made.mesh);
   } else if (mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon) {
     result.mesh = variable_wire(result.curve.quads, result.curve.cycle,
                                 {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,

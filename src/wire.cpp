@@ -222,14 +222,6 @@ PolygonMesh sweep_mesh(const Sweep& sweep, WireShape shape, int32_t sides, doubl
 
 } // namespace
 
-PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
-  if (!(options.radius > 0) || !std::isfinite(options.radius))
-    throw UsageError("the wire radius must be a positive number (got " + std::to_string(options.radius) + ")");
-  if (options.shape == WireShape::wire && options.sides < 3)
-    throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
-  return sweep_mesh(sweep_frames(quads, cycle, options.curve), options.shape, options.sides, options.radius);
-}
-
 namespace {
 
 // Closest distance between segments [p0,p1] and [q0,q1] (Ericson, Real-Time Collision
@@ -403,9 +395,11 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
   return tube_clearance(centre, samples_per_segment, 1.0).radius;
 }
 
-double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+namespace {
+
+// auto_wire_radius on a sweep made with options.curve.
+double auto_radius(const Sweep& sweep, const ConstantWireOptions& options) {
   const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
-  const Sweep sweep = sweep_frames(quads, cycle, options.curve);
   constexpr double step = 1.1, reach = 1.35; // reach >= step^steps
   constexpr int steps = 3;
   const Clearance clearance = tube_clearance(sweep.centre, k, reach);
@@ -426,6 +420,23 @@ double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const
     radius *= step;
   }
   return radius;
+}
+
+} // namespace
+
+double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  return auto_radius(sweep_frames(quads, cycle, options.curve), options);
+}
+
+ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  if (options.radius && (!(*options.radius > 0) || !std::isfinite(*options.radius)))
+    throw UsageError("the wire radius must be a positive number (got " + std::to_string(*options.radius) + ")");
+  if (options.shape == WireShape::wire && options.sides < 3)
+    throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
+  const Sweep sweep = sweep_frames(quads, cycle, options.curve);
+  const double radius = options.radius ? *options.radius : auto_radius(sweep, options);
+  if (!(radius > 0)) return {};
+  return {sweep_mesh(sweep, options.shape, options.sides, radius), radius};
 }
 
 PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {

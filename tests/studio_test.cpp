@@ -174,6 +174,7 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(wire.radius, max_wire_radius(wire.curve.curves, 2));
   EXPECT_GT(wire.radius, checked.radius / 2); // the bound is within about a third of the truth
   EXPECT_LT(wire.radius, checked.radius * 2);
+  EXPECT_EQ(checked.radius, auto_wire_radius(checked.curve.quads, checked.curve.cycle, {.curve = StudioParams{}.job.curve}));
   EXPECT_EQ(parse_make_request(R"({"session": "a", "preview": true})").params.preview, true);
   EXPECT_EQ(message_of(R"({"session": "a", "preview": 1})"), "preview: expected true or false, got 1");
 }

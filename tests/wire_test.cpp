@@ -23,12 +23,13 @@ CurveResult curve_of(PolygonMesh mesh, int samples = 2) {
   return make_curve(repair(std::move(mesh), "mesh").mesh, {.curve = {.samples = samples}});
 }
 
-double auto_radius(const CurveResult& curve, int samples = 2) {
-  return auto_wire_radius(curve.quads, curve.cycle, {.curve = {.samples = samples}});
+PolygonMesh constant(const CurveResult& curve, double radius, WireShape shape = WireShape::wire, int samples = 2) {
+  return constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .curve = {.samples = samples}}).mesh;
 }
 
-PolygonMesh constant(const CurveResult& curve, double radius, WireShape shape = WireShape::wire, int samples = 2) {
-  return constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .curve = {.samples = samples}});
+// `--radius auto`: the wire and the radius constant_wire chose.
+ConstantWire automatic(const CurveResult& curve, WireShape shape = WireShape::wire, int samples = 2) {
+  return constant_wire(curve.quads, curve.cycle, {.shape = shape, .curve = {.samples = samples}});
 }
 
 // A closed wire is one torus per cycle: watertight, consistently oriented, Euler
@@ -55,9 +56,9 @@ class WireOnShapes : public ::testing::TestWithParam<Shape> {};
 
 TEST_P(WireOnShapes, ConstantWireIsOneTorusPerCycleWithoutSelfIntersection) {
   const CurveResult curve = curve_of(GetParam().make());
-  const double r = auto_radius(curve);
-  ASSERT_GT(r, 0);
-  const PolygonMesh wire = constant(curve, r);
+  const ConstantWire made = automatic(curve);
+  ASSERT_GT(made.radius, 0);
+  const PolygonMesh& wire = made.mesh;
   expect_tori(wire, curve.cycle.num_cycles());
   const PrintabilityReport report = check_printability(wire, {.thickness = false});
   EXPECT_FALSE(report.self_intersecting) << "faces " << report.first_intersection[0] << ", " << report.first_intersection[1];
@@ -72,7 +73,7 @@ TEST_P(WireOnShapes, VariableWireIsOneTorusPerCycle) {
 
 TEST_P(WireOnShapes, RibbonsAreBandsWithTwoBoundaryLoopsPerCycle) {
   const CurveResult curve = curve_of(GetParam().make());
-  for (const PolygonMesh& ribbon : {constant(curve, auto_radius(curve), WireShape::ribbon),
+  for (const PolygonMesh& ribbon : {automatic(curve, WireShape::ribbon).mesh,
                                     variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1})}) {
     const MeshReport r = inspect(ribbon);
     EXPECT_EQ(r.non_manifold_edges, 0);
@@ -112,7 +113,7 @@ TEST(Wire, RibbonFacesPointOutOfTheSurface) {
 TEST(Wire, CycleOnAMoebiusBandIsTwoSided) {
   const CurveResult curve = curve_of(moebius(120));
   ASSERT_EQ(curve.cycle.num_cycles(), 1);
-  expect_tori(constant(curve, auto_radius(curve)), 1, false);
+  expect_tori(automatic(curve).mesh, 1, false);
   const MeshReport ribbon = inspect(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0}));
   EXPECT_EQ(ribbon.boundary_loops, 2);
   EXPECT_TRUE(ribbon.orientable);
@@ -164,7 +165,7 @@ TEST(Wire, OneSidedCycleClosesWithAHalfTurn) {
   EXPECT_FALSE(ribbon.orientable);
   expect_tori(variable_wire(strip.quads, strip.cycle, {.levels = 1}), 1, false);
   for (int sides : {4, 5})
-    expect_tori(constant_wire(strip.quads, strip.cycle, {.radius = 0.02, .sides = sides, .curve = {.samples = 2}}), 1, false);
+    expect_tori(constant_wire(strip.quads, strip.cycle, {.radius = 0.02, .sides = sides, .curve = {.samples = 2}}).mesh, 1, false);
 }
 
 // --radius auto is tight: the largest radius is clear of self-intersection while 1.2
@@ -173,9 +174,30 @@ TEST(Wire, OneSidedCycleClosesWithAHalfTurn) {
 TEST(Wire, AutoRadiusIsTheLargestWithoutSelfIntersection) {
   for (auto make : {+[] { return sphere(300); }, +[] { return torus(400); }}) {
     const CurveResult curve = curve_of(make());
-    const double r = auto_radius(curve);
-    EXPECT_FALSE(check_printability(constant(curve, r), {.thickness = false}).self_intersecting);
-    EXPECT_TRUE(check_printability(constant(curve, 1.2 * r), {.thickness = false}).self_intersecting);
+    const ConstantWire wire = automatic(curve);
+    EXPECT_FALSE(check_printability(wire.mesh, {.thickness = false}).self_intersecting);
+    EXPECT_TRUE(check_printability(constant(curve, 1.2 * wire.radius), {.thickness = false}).self_intersecting);
+  }
+}
+
+// constant_wire without a radius searches on its own sweep (computed once for the search
+// and the wire): it must find what auto_wire_radius finds, and build the same wire as
+// when that radius is given.
+TEST(Wire, AutoWireUsesTheRadiusAutoWireRadiusFinds) {
+  const CurveResult curve = curve_of(torus(400));
+  for (const WireShape shape : {WireShape::wire, WireShape::ribbon}) {
+    const ConstantWire made = automatic(curve, shape);
+    const double expected = auto_wire_radius(curve.quads, curve.cycle, {.shape = shape, .curve = {.samples = 2}});
+    ASSERT_GT(expected, 0);
+    EXPECT_EQ(made.radius, expected);
+    const PolygonMesh given = constant(curve, expected, shape);
+    EXPECT_EQ(made.mesh.face_vertices, given.face_vertices);
+    ASSERT_EQ(made.mesh.positions.size(), given.positions.size());
+    for (size_t v = 0; v < given.positions.size(); ++v) {
+      ASSERT_EQ(made.mesh.positions[v].x, given.positions[v].x) << "vertex " << v;
+      ASSERT_EQ(made.mesh.positions[v].y, given.positions[v].y) << "vertex " << v;
+      ASSERT_EQ(made.mesh.positions[v].z, given.positions[v].z) << "vertex " << v;
+    }
   }
 }
 
@@ -256,6 +278,7 @@ TEST(Wire, ParallelogramStripStaysStraight) {
 TEST(Wire, BadParametersAreRefused) {
   const CurveResult curve = curve_of(sphere(100));
   EXPECT_THROW(constant(curve, -1), UsageError);
+  EXPECT_THROW(constant(curve, 0), UsageError); // a given radius of 0 is refused, not taken for auto
   EXPECT_THROW(constant_wire(curve.quads, curve.cycle, {.radius = 0.1, .sides = 2}), UsageError);
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.s = 1.5}), UsageError);
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.t = -0.1}), UsageError);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace meander::cli {
 
@@ -27,9 +28,9 @@ struct WireArgs {
   bool strict = false, verbose = false;
 };
 
-// "auto" (0) or a positive number.
-double parse_radius(const std::string& text) {
-  if (text == "auto") return 0;
+// "auto" (none) or a positive number.
+std::optional<double> parse_radius(const std::string& text) {
+  if (text == "auto") return std::nullopt;
   double r = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), r);
   if (ec != std::errc() || end != text.data() + text.size() || !(r > 0) || !std::isfinite(r))
@@ -41,7 +42,7 @@ void run_wire(const WireArgs& a) {
   const CurveJob job = curve_job(a.curve);
   const bool constant = a.method == "constant";
   const WireShape shape = parse_wire_shape(a.shape);
-  double radius = parse_radius(a.radius);
+  const std::optional<double> radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
@@ -57,13 +58,13 @@ void run_wire(const WireArgs& a) {
   log.restart();
 
   PolygonMesh wire;
+  double radius_used = 0;
   if (constant) {
-    if (radius == 0) {
-      radius = auto_wire_radius(curve.quads, curve.cycle, {.shape = shape, .sides = a.sides, .curve = job.curve});
-      log.lap("radius");
-      if (!(radius > 0)) throw TopologyError(a.input + ": the curve touches itself: no wire radius avoids a self-intersection");
-    }
-    wire = constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
+    ConstantWire made =
+        constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
+    if (!(made.radius > 0)) throw TopologyError(a.input + ": the curve touches itself: no wire radius avoids a self-intersection");
+    wire = std::move(made.mesh);
+    radius_used = made.radius;
   } else {
     wire = about_input(a.input, [&] { return variable_wire(curve.quads, curve.cycle, variable); });
   }
@@ -88,7 +89,7 @@ void run_wire(const WireArgs& a) {
     log.lap("render png");
   }
   std::string summary = a.output + ": " + printability_summary(report);
-  if (constant) summary += " Radius " + std::to_string(radius) + (a.radius == "auto" ? " (auto)." : ".");
+  if (constant) summary += " Radius " + std::to_string(radius_used) + (radius ? "." : " (auto).");
   std::fprintf(stderr, "%s\n", summary.c_str());
   if (!a.png.empty()) log.note("wrote " + picture_written);
 }

@@ -106,8 +106,8 @@ struct StudioResult {
 // refuse a request whose samples, sides, levels or subdivision would exhaust memory.
 int64_t studio_result_size(const StudioSurface& surface, const StudioParams& params);
 
-// Runs the job on a copy of the surface: make_curve, then constant_wire (auto_wire_radius
-// when radius is 0) or variable_wire, then check_printability without the thickness rays
+// Runs the job on a copy of the surface: make_curve, then constant_wire (its automatic
+// radius when radius is 0) or variable_wire, then check_printability without the thickness rays
 // (the live view's stats; none for a preview); or make_duotone, duotone_surface (subdivided if asked) and
 // separating_curves. Throws what those throw; TopologyError when no radius avoids a
 // self-intersection, as `meander wire`.

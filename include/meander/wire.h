@@ -15,6 +15,7 @@
 #include "meander/mesh.h"
 #include "meander/quadrangulate.h"
 
+#include <optional>
 #include <string_view>
 
 namespace meander {
@@ -31,9 +32,16 @@ WireShape parse_wire_shape(std::string_view name);
 // segment (ribbon) swept along the smooth curve of the cycle.
 struct ConstantWireOptions {
   WireShape shape = WireShape::wire;
-  double radius = 0; // tube radius, or half the ribbon's width; > 0, in mesh units
-  int sides = 8;     // sides of the swept polygon (wire only), >= 3
+  // Tube radius, or half the ribbon's width; > 0, in mesh units. None (the default):
+  // `--radius auto`, the largest without self-intersection (auto_wire_radius).
+  std::optional<double> radius;
+  int sides = 8; // sides of the swept polygon (wire only), >= 3
   CurveOptions curve;
+};
+
+struct ConstantWire {
+  PolygonMesh mesh; // empty when no radius avoids a self-intersection
+  double radius = 0; // the radius used: options.radius, or the automatic one (0: none exists)
 };
 
 // Sweeps along cycle_curves(quads, cycle, options.curve). The frame at each point of
@@ -42,8 +50,11 @@ struct ConstantWireOptions {
 // curve lies on the surface, so this frame does not twist (Section 1.1), and because it
 // is computed per point rather than transported, the tube closes without a seam twist.
 // Wire: `sides` vertices and `sides` quads per curve point; ribbon: two vertices and one
-// quad per curve point. Throws UsageError for radius <= 0 or sides < 3. O(output).
-PolygonMesh constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
+// quad per curve point. Without options.radius, the radius is auto_wire_radius's, found
+// on the same curve and frames as the wire (computed once); if the curve touches itself
+// the result is {empty mesh, radius 0}. Throws UsageError for a radius that is not a
+// positive number or sides < 3. O(output), plus the radius search for auto.
+ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
 
 // The largest radius for which the constant-diameter tube around `centre` (closed
 // polylines) does not run into itself: half the distance between parts of the curves
@@ -61,7 +72,8 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment);
 // third below the truth) and grows it in steps of 10% while the tube, checked where the
 // bound is tight (printability.h), stays clear: so 1.1 times the result collides, or
 // the result is a third above the bound. `options.radius` is ignored. Returns 0 if the
-// curve touches itself.
+// curve touches itself. constant_wire without a radius finds the same radius; this is
+// for a caller who wants the radius alone.
 double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
 
 // Variable diameter (Section 4, second method). s and t in [0, 1] size the trapezoid
