@@ -14,6 +14,14 @@
 #include <cstdlib>
 #include <new>
 
+// Under AddressSanitizer its own operator new stays, to check that new and delete pair up.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MEANDER_ASAN 1
+#endif
+#endif
+#if !defined(__SANITIZE_ADDRESS__) && !defined(MEANDER_ASAN)
+
 namespace {
 
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
@@ -45,3 +53,5 @@ void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+#endif
