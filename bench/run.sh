@@ -107,5 +107,16 @@ if [ "$peak_kb" -gt 0 ]; then
 else
   echo "| peak memory <= 150 bytes per input triangle (CLI, 10M) | GNU time not installed | - |"
 fi
+
+# What any program of the CLI's footprint and output pays here, whatever its algorithms:
+# 1.3 GiB of fresh memory (its peak) and a file the size of the 10M curve (2.23 GiB).
+echo
+echo "## Floors of this machine (3 runs of meander_bench_floors, each a fresh process)"
+echo
+echo "| run | what | first time | again |"
+echo "|---|---|---:|---:|"
+for ((i = 1; i <= 3; ++i)); do
+  "$build/bench/meander_bench_floors" --memory-gb 1.3 --write "$scratch/floor.bin" --write-gb 2.23 | tail -n +3 | sed "s/^/| $i /"
+done
 echo
 echo "load average at end: $(load)"

@@ -1,6 +1,7 @@
 // What each reader must accept: the variants of every format that real files use.
 // Each test says which trap it sets.
 #include "io_test_support.h"
+#include "meander/error.h"
 #include "meander/io.h"
 #include "test_support.h"
 
@@ -45,6 +46,16 @@ TEST(IoObj, AcceptsWhatRealFilesCarry) {
   EXPECT_EQ(m.positions[1], (Vec3{0.001f, 200, 0}));
   EXPECT_TRUE(std::signbit(m.positions[1].z));
   EXPECT_EQ(faces_of(m), (std::vector<int32_t>{0, 1, 2}));
+}
+
+// Lone CRs end lines as LF and CRLF do, also at the end of a comment or of a skipped
+// statement, and a CR before a LF stays one line end.
+TEST(IoObj, ReadsLoneCarriageReturnsAsLineEnds) {
+  const PolygonMesh m = read_text("mac.obj", "# classic\rvt 0 0\rv 0 0 0\rv 1 0 0\r\nv 0 1 0\nv 0 0 1\r"
+                                             "f 1 3 2\rf 1 2 4\r\r\nf 2 3 4\nf 3 1 4\r");
+  ASSERT_EQ(m.num_vertices(), 4);
+  EXPECT_EQ(m.positions[3], (Vec3{0, 0, 1}));
+  EXPECT_EQ(faces_of(m), (std::vector<int32_t>{0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3}));
 }
 
 // A face may name a vertex defined further down.
@@ -166,6 +177,28 @@ TEST(IoPly, ReadsAsciiWithExtraPropertiesAndElements) {
   ASSERT_EQ(m.num_vertices(), 3);
   EXPECT_EQ(m.positions[2], (Vec3{0, 1, -2e-3f}));
   EXPECT_EQ(faces_of(m), (std::vector<int32_t>{0, 1, 2}));
+}
+
+// Triangle strips (element tristrips): -1 restarts a strip, every other triangle is wound
+// backwards, and the repeated-vertex triangles strips use to join are not faces. Faces of
+// a face element come first.
+TEST(IoPly, ReadsTriangleStrips) {
+  const std::string header =
+      ply_header("binary_little_endian", "element vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+                                         "element face 1\nproperty list uchar int vertex_indices\n"
+                                         "element tristrips 2\nproperty list int int vertex_indices\n");
+  std::string body = little_floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0});
+  body += little(uint8_t(3)) + little(3) + little(5) + little(4);
+  for (int32_t v : {6, 0, 1, 2, 3, 3, 4}) body += little(v); // (0,1,2) (2,1,3); (2,3,3) (3,3,4) joins
+  for (int32_t v : {5, 2, 3, -1, 4, 5}) body += little(v);    // restart: too short for a triangle
+  const PolygonMesh m = read_mesh(test::write_file("strips.ply", header + body));
+  EXPECT_EQ(faces_of(m), (std::vector<int32_t>{3, 5, 4, 0, 1, 2, 2, 1, 3}));
+
+  const std::string ascii = ply_header("ascii", "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                                "element tristrips 1\nproperty list uchar int vertex_indices\n") +
+                            "0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 7\n";
+  EXPECT_EQ(test::message_of<InputError>([&] { read_text("strip_index.ply", ascii); }),
+            (test::output_dir() / "strip_index.ply").string() + ":15: tristrips 0: vertex index 7 out of range (0..3)");
 }
 
 // The face element may come before the vertex element.

@@ -57,6 +57,9 @@ INSTANTIATE_TEST_SUITE_P(
         // The line is counted right through a byte order mark and CRLF line ends.
         Malformed{"nan_after_bom_and_crlf.obj", "\xEF\xBB\xBFv 0 0 0\r\nv 0 nan 0\r\n",
                   ":2: non-finite vertex coordinate 'nan'"},
+        // ... and through lone CRs (classic Mac OS), a comment ending at one, and a mix.
+        Malformed{"nan_after_lone_cr.obj", "v 0 0 0\r# note\rv 1 0 0\r\nv 0 1 0\nv 0 nan 0\r",
+                  ":5: non-finite vertex coordinate 'nan'"},
         Malformed{"index_zero.obj", three_vertices + "f 0 1 2\n",
                   ":4: vertex index 0 is invalid (OBJ indices start at 1)"},
         Malformed{"index_too_high.obj", three_vertices + "f 1 2 9\n", ":4: face references vertex 9 but only 3 exist"},

@@ -66,7 +66,8 @@ struct Property {
   Role role = Role::none;
 };
 
-enum class Kind : uint8_t { vertex, face, edge, other };
+// tristrips: the triangle strips some scanners and older tools write instead of faces.
+enum class Kind : uint8_t { vertex, face, tristrips, edge, other };
 
 struct Element {
   std::string name;
@@ -83,6 +84,7 @@ struct Element {
     const bool one = count == 1;
     const std::string things = kind == Kind::vertex ? (one ? "vertex" : "vertices")
                                : kind == Kind::face ? (one ? "face" : "faces")
+                               : kind == Kind::tristrips ? (one ? "triangle strip" : "triangle strips")
                                                     : "'" + name + (one ? "' element" : "' elements");
     return std::to_string(count) + " " + things;
   }
@@ -113,12 +115,16 @@ void assign_roles(Header& header, Target target, std::string_view name) {
   const std::string_view wanted = target == Target::mesh ? "face" : "edge";
   Element* vertex = nullptr;
   Element* face = nullptr;
+  Element* strips = nullptr;
   for (Element& e : header.elements) {
-    Element** slot = e.name == "vertex" ? &vertex : e.name == wanted ? &face : nullptr;
+    Element** slot = e.name == "vertex"                                     ? &vertex
+                     : e.name == wanted                                     ? &face
+                     : target == Target::mesh && e.name == "tristrips" ? &strips
+                                                                            : nullptr;
     if (!slot) continue;
     if (*slot) fail("two " + e.name + " elements");
     *slot = &e;
-    e.kind = slot == &vertex ? Kind::vertex : target == Target::mesh ? Kind::face : Kind::edge;
+    e.kind = slot == &vertex ? Kind::vertex : slot == &strips ? Kind::tristrips : target == Target::mesh ? Kind::face : Kind::edge;
   }
   if (!vertex) fail("no vertex element");
   for (Role axis : {Role::x, Role::y, Role::z}) {
@@ -143,14 +149,17 @@ void assign_roles(Header& header, Target target, std::string_view name) {
     if (std::string message = too_many(face->count, "edges"); !message.empty()) fail(message);
     return;
   }
-  if (!face) fail_input(name, "no faces");
-  const auto indices = std::find_if(face->properties.begin(), face->properties.end(), [](const Property& q) {
-    return q.name == "vertex_indices" || q.name == "vertex_index";
-  });
-  if (indices == face->properties.end() || !indices->count_type) fail("element face has no vertex_indices list");
-  if (!is_integer(indices->type)) fail(indices->name + " must be a list of integers");
-  indices->role = Role::indices;
-  if (std::string message = too_many(face->count, "faces"); !message.empty()) fail(message);
+  if (!face && !strips) fail_input(name, "no faces");
+  for (Element* e : {face, strips}) {
+    if (!e) continue;
+    const auto indices = std::find_if(e->properties.begin(), e->properties.end(), [](const Property& q) {
+      return q.name == "vertex_indices" || q.name == "vertex_index";
+    });
+    if (indices == e->properties.end() || !indices->count_type) fail("element " + e->name + " has no vertex_indices list");
+    if (!is_integer(indices->type)) fail(indices->name + " must be a list of integers");
+    indices->role = Role::indices;
+    if (std::string message = too_many(e->count, e == face ? "faces" : "triangle strips"); !message.empty()) fail(message);
+  }
 }
 
 Header read_header(std::string_view bytes, Target target, std::string_view name) {
@@ -270,6 +279,7 @@ public:
     switch (e.kind) {
     case Kind::vertex: return !swap_ && read_float_vertices(e, mesh.positions);
     case Kind::face: return !swap_ && read_byte_counted_faces(e, index_limit, mesh);
+    case Kind::tristrips:
     case Kind::edge: return false;
     case Kind::other: return skip_fixed_size(e);
     }
@@ -439,8 +449,39 @@ template <class Source> size_t records_that_fit(const Source& in, const Element&
   return size_t(std::min<uint64_t>(e.count, in.bytes_left() / least));
 }
 
-// Reads (vertex, face, edge) or skips (others) an element value by value: any layout,
-// any types, either body encoding. Edges go to `edges`, 2 vertex ids each.
+// The triangles of a strip record: index -1 restarts the strip; every other triangle is
+// wound backwards so that all agree; triangles with a repeated vertex, which strips use
+// to turn corners and to join strips, are not faces and are left out.
+template <class Source>
+void read_strip(Source& in, const Property& p, int64_t index_limit, PolygonMesh& mesh) {
+  const int64_t size = in.integer(*p.count_type, "list length");
+  if (size < 0) in.fail("negative list length " + std::to_string(size));
+  int32_t last[2] = {-1, -1};
+  int64_t in_strip = 0;
+  for (int64_t k = 0; k < size; ++k) {
+    const int64_t index = in.integer(p.type, "vertex index");
+    if (index == -1) {
+      in_strip = 0;
+      continue;
+    }
+    if (index < 0 || index >= index_limit) in.fail(index_out_of_range(index, index_limit));
+    const int32_t v = int32_t(index);
+    if (in_strip >= 2 && last[0] != last[1] && last[1] != v && v != last[0]) {
+      if (in_strip % 2 == 0)
+        mesh.face_vertices.insert(mesh.face_vertices.end(), {last[0], last[1], v});
+      else
+        mesh.face_vertices.insert(mesh.face_vertices.end(), {last[1], last[0], v});
+      if (mesh.face_vertices.size() > size_t(max_count)) in.fail(too_many(mesh.face_vertices.size(), "face corners"));
+      mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
+    }
+    last[0] = last[1];
+    last[1] = v;
+    ++in_strip;
+  }
+}
+
+// Reads (vertex, face, tristrips, edge) or skips (others) an element value by value: any
+// layout, any types, either body encoding. Edges go to `edges`, 2 vertex ids each.
 template <class Source>
 void read_element(Source& in, const Element& e, int64_t index_limit, PolygonMesh& mesh, std::vector<int32_t>& edges) {
   // Records without properties take no bytes: nothing to read, however many.
@@ -460,6 +501,8 @@ void read_element(Source& in, const Element& e, int64_t index_limit, PolygonMesh
         const int64_t index = in.integer(p.type, "vertex index");
         if (index < 0 || index >= index_limit) in.fail(index_out_of_range(index, index_limit));
         ends[p.role == Role::vertex2] = int32_t(index);
+      } else if (p.role == Role::indices && e.kind == Kind::tristrips) {
+        read_strip(in, p, index_limit, mesh);
       } else if (p.role == Role::indices) {
         const int64_t size = in.integer(*p.count_type, "list length");
         if (size < 3) in.fail(too_few_vertices(size));
@@ -490,7 +533,7 @@ void read_body(Source& in, const Header& header, std::string_view name, PolygonM
   for (const Element& e : header.elements) {
     // Faces and edges before vertices are checked against the count once it is known.
     const int64_t index_limit = vertices_read ? mesh.num_vertices() : max_count;
-    faces_first |= (e.kind == Kind::face || e.kind == Kind::edge) && !vertices_read;
+    faces_first |= (e.kind == Kind::face || e.kind == Kind::tristrips || e.kind == Kind::edge) && !vertices_read;
     bool done = false;
     if constexpr (std::is_same_v<Source, BinarySource>) done = in.read_fast(e, index_limit, mesh);
     if (!done) read_element(in, e, index_limit, mesh, edges);

@@ -18,27 +18,35 @@ TextCursor::TextCursor(std::string_view text, std::string_view name, int64_t fir
 
 void TextCursor::skip_space() {
   while (p_ != end_) {
-    if (is_blank(*p_)) {
-      ++p_;
-    } else if (*p_ == '\n') {
+    if (is_line_end(p_)) {
       ++p_;
       ++line_;
+    } else if (is_blank(*p_)) {
+      ++p_;
     } else if (*p_ == '#') {
-      const void* newline = std::memchr(p_, '\n', size_t(end_ - p_));
-      p_ = newline ? static_cast<const char*>(newline) : end_;
+      p_ = find_line_end(p_);
     } else {
       return;
     }
   }
 }
 
+const char* TextCursor::find_line_end(const char* q) const {
+  const void* newline = std::memchr(q, '\n', size_t(end_ - q));
+  const char* last = newline ? static_cast<const char*>(newline) : end_;
+  // A lone CR before the LF ends the line first; the CR of a CRLF is that LF's.
+  for (const void* cr; (cr = std::memchr(q, '\r', size_t(last - q))) != nullptr; q = static_cast<const char*>(cr) + 1)
+    if (is_line_end(static_cast<const char*>(cr))) return static_cast<const char*>(cr);
+  return last;
+}
+
 void TextCursor::next_line() {
-  const void* newline = std::memchr(p_, '\n', size_t(end_ - p_));
-  if (!newline) {
+  const char* line_end = find_line_end(p_);
+  if (line_end == end_) {
     p_ = end_;
     return;
   }
-  p_ = static_cast<const char*>(newline) + 1;
+  p_ = line_end + 1;
   ++line_;
 }
 
@@ -122,7 +130,7 @@ void TextCursor::skip_number(std::string_view what) {
 }
 
 void TextCursor::fail(std::string_view message) const {
-  const bool after_last_line = p_ == end_ && p_ != begin_ && p_[-1] == '\n';
+  const bool after_last_line = p_ == end_ && p_ != begin_ && (p_[-1] == '\n' || p_[-1] == '\r');
   fail_at_line(name_, line_ - after_last_line, message);
 }
 

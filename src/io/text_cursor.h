@@ -18,16 +18,16 @@ public:
   bool at_end() const { return p_ == end_; }
   size_t bytes_left() const { return size_t(end_ - p_); }
 
-  // Skips spaces, tabs and carriage returns, staying on the line.
+  // Skips spaces, tabs and the carriage returns of CRLF, staying on the line.
   void skip_blanks() {
-    while (p_ != end_ && is_blank(*p_)) ++p_;
+    while (p_ != end_ && is_blank(*p_) && !is_line_end(p_)) ++p_;
   }
   // Skips blanks, line ends and comments: to the next word or the end of the text.
   void skip_space();
   // Whether the line holds no more words (skips blanks first).
   bool at_line_end() {
     skip_blanks();
-    return p_ == end_ || *p_ == '\n' || *p_ == '#';
+    return p_ == end_ || is_line_end(p_) || *p_ == '#';
   }
   // Moves past the end of the current line.
   void next_line();
@@ -57,6 +57,11 @@ public:
   static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 private:
+  // A line ends at LF, CRLF or a lone CR (classic Mac OS text); a CR followed by a LF is
+  // a blank before the LF.
+  bool is_line_end(const char* q) const { return *q == '\n' || (*q == '\r' && (q + 1 == end_ || q[1] != '\n')); }
+  // The first line end at or after q, or the end of the text.
+  const char* find_line_end(const char* q) const;
   bool at_word_end(const char* q) const { return q == end_ || is_blank(*q) || *q == '\n' || *q == '#'; }
   // The word starting at the cursor, for messages.
   std::string_view word_here() const;
