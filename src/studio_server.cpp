@@ -72,6 +72,9 @@ public:
   bool request_complete() const { return !in_headers_ && body_known_ && allowed_ == 0; }
   const std::string& output() const { return output_; }
 
+  // Whether a read failed because the client was too slow.
+  bool too_slow() const { return too_slow_; }
+
   // Before closing after a request that was not read to its end: lets the client finish
   // sending (for at most `time`, the bytes dropped), so that it reads the answer (a 413,
   // a 403) rather than a reset connection.
@@ -86,10 +89,13 @@ public:
   bool is_writable() const override { return true; }
 
   ssize_t read(char* data, size_t size) override {
-    if (allowed_ == 0 || Clock::now() > (in_headers_ ? header_deadline_ : request_deadline_)) return -1;
+    if (allowed_ == 0) return -1;
     if (pending().empty()) {
       if (socket_ < 0) return 0;
-      if (!wait(POLLIN, in_headers_ ? header_deadline_ : request_deadline_)) return -1;
+      if (!wait(POLLIN, in_headers_ ? header_deadline_ : request_deadline_)) {
+        too_slow_ = true;
+        return -1;
+      }
       if (const ssize_t n = receive(); n <= 0) return n;
     }
     const size_t n = size_t(std::min<uint64_t>({size, allowed_, pending().size()}));
@@ -143,7 +149,7 @@ private:
   const StudioServerOptions& limits_;
   char buffer_[4096];
   size_t filled_ = 0, taken_ = 0;
-  bool in_headers_ = true, body_known_ = false;
+  bool in_headers_ = true, body_known_ = false, too_slow_ = false;
   uint64_t allowed_ = 0; // bytes the request may still send
   Clock::time_point header_deadline_, request_deadline_;
   std::optional<Clock::time_point> response_deadline_;
@@ -168,6 +174,12 @@ public:
     }
   }
 
+  // httplib listens with a backlog of 5: a burst of connections (100 uploads at once)
+  // overflows it and some are reset. Listening again only lengthens the queue.
+  void lengthen_backlog() {
+    if (::listen(svr_sock_, SOMAXCONN) != 0) throw IOError("cannot listen: " + std::string(std::strerror(errno)));
+  }
+
 private:
   // Called once the headers are in, before routing and the body.
   void prepare(httplib::Request& req, ConnectionStream& stream) const {
@@ -190,7 +202,7 @@ private:
   bool process_and_close_socket(socket_t socket) override {
     ConnectionStream stream(socket, limits_);
     serve(stream);
-    if (!stream.request_complete()) stream.drain(std::chrono::seconds(2));
+    if (!stream.request_complete() && !stream.too_slow()) stream.drain(std::chrono::seconds(2));
     shutdown(socket, SHUT_RDWR);
     close(socket);
     return true;
@@ -483,9 +495,11 @@ int StudioServer::bind() {
   if (impl_->options.port == 0) {
     const int port = impl_->http.bind_to_any_port(impl_->options.host);
     if (port <= 0) throw IOError("cannot listen on " + where);
+    impl_->http.lengthen_backlog();
     return impl_->port = port;
   }
   if (!impl_->http.bind_to_port(impl_->options.host, impl_->options.port)) throw IOError("cannot listen on " + where);
+  impl_->http.lengthen_backlog();
   return impl_->port = impl_->options.port;
 }
 
