@@ -244,7 +244,9 @@ std::map<std::string, Asset> read_page(const fs::path& folder) {
 
 void send_json(httplib::Response& res, int status, const json& body) {
   res.status = status;
-  res.set_content(body.dump(), "application/json");
+  // Messages quote what the client sent (a path, a file name), which need not be UTF-8;
+  // dump() would throw, and from httplib's error handler that ended the process.
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void send_error(httplib::Response& res, int status, const std::string& message) {

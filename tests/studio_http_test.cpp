@@ -217,6 +217,29 @@ TEST(StudioHttp, AnUnreadBodyIsNeverRunAsARequest) {
             (std::vector<int>{200, 200, 200}));
 }
 
+// Found by fuzz_studio_http: a message quoting bytes that are not UTF-8 made the JSON
+// writer throw, and from httplib's error handler (404) that ended the process.
+TEST(StudioHttp, BytesThatAreNotUtf8InAMessageLeaveTheServerUp) {
+  RunningServer running(small_limits());
+  for (const std::string& request :
+       std::vector<std::string>{get("/%FC%FF"), get("/api/result/%FC/result.stl"), "PO\xfcST / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
+        post("/api/mesh", multipart, part("mesh", "\xfc\xfe.obj", "v 1 2\n") + "--b0undary--\r\n")}) {
+    Connection c(running.port);
+    c.send(request);
+    c.done_sending();
+    const std::string answer = c.receive_all();
+    const std::vector<int> codes = statuses(answer);
+    ASSERT_EQ(codes.size(), 1u) << request;
+    EXPECT_GE(codes[0], 400) << request;
+    EXPECT_LT(codes[0], 500) << request;
+  }
+  // The message quotes the path with U+FFFD for each byte that is not UTF-8.
+  EXPECT_EQ(error_of(running.server.serve_bytes(get("/%FC%FF"))), "no such page or API: GET /\xef\xbf\xbd\xef\xbf\xbd");
+  Connection next(running.port);
+  next.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(statuses(next.receive_all()), std::vector<int>{200});
+}
+
 TEST(StudioHttp, ManyRangesDoNotMultiplyTheAnswer) {
   const fs::path page = test::output_dir() / "page";
   fs::create_directories(page);
