@@ -5,6 +5,7 @@
 // StudioServer::serve_bytes (the server's own connection code, from memory); connection
 // behaviour and memory through real sockets on a free port of 127.0.0.1.
 #include "meander/studio_server.h"
+#include "running_server.h"
 #include "test_support.h"
 
 #include <httplib.h>
@@ -29,20 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// A server on a free port, serving from its own thread until destroyed.
-struct RunningServer {
-  explicit RunningServer(StudioServerOptions options) : server(std::move(options)) {
-    port = server.bind();
-    thread = std::thread([this] { server.run(); });
-  }
-  ~RunningServer() {
-    server.stop();
-    thread.join();
-  }
-  StudioServer server;
-  int port = 0;
-  std::thread thread;
-};
+using test::RunningServer;
 
 // A raw TCP connection to 127.0.0.1:port; reads wait at most 60 s (only to detect a hang).
 class Connection {

@@ -1,5 +1,6 @@
 // `meander serve` over real HTTP: the server on a free port of 127.0.0.1, httplib's client.
 #include "meander/studio_server.h"
+#include "running_server.h"
 #include "test_support.h"
 
 #include <httplib.h>
@@ -16,20 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-// A server on a free port, serving from its own thread until destroyed.
-struct RunningServer {
-  explicit RunningServer(StudioServerOptions options) : server(std::move(options)) {
-    port = server.bind();
-    thread = std::thread([this] { server.run(); });
-  }
-  ~RunningServer() {
-    server.stop();
-    thread.join();
-  }
-  StudioServer server;
-  int port = 0;
-  std::thread thread;
-};
+using test::RunningServer;
 
 class StudioServerTest : public ::testing::Test {
 protected:
