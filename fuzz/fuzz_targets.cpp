@@ -4,6 +4,9 @@
 #include "meander/error.h"
 #include "meander/pipeline.h"
 #include "meander/studio.h"
+#include "meander/studio_server.h"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -192,6 +195,50 @@ std::string upload_target(std::span<const uint8_t> input) {
     const StudioSurface surface = load_studio_surface(all.substr(0, newline), all.substr(std::min(newline + 1, all.size())));
     return mesh_problem(surface.repaired.mesh, true);
   });
+}
+
+std::string http_target(std::span<const uint8_t> bytes) {
+  // One server for the whole run, its limits small enough that no request's work takes
+  // long; sessions come and go as the inputs make them.
+  static StudioServer server({.port = 0, .max_upload = size_t(1) << 20, .max_faces = 5'000, .max_result = 50'000});
+  static const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                  "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  static const std::string upload_body = "--b\r\nContent-Disposition: form-data; name=\"mesh\"; filename=\"cube.obj\"\r\n\r\n" +
+                                         cube + "\r\n--b--\r\n";
+  static const std::string upload = "POST /api/mesh HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: multipart/form-data; "
+                                    "boundary=b\r\nContent-Length: " +
+                                    std::to_string(upload_body.size()) + "\r\n\r\n" + upload_body;
+  const std::string made = server.serve_bytes(upload);
+  const size_t made_body = made.find("\r\n\r\n");
+  if (!made.starts_with("HTTP/1.1 200 ") || made_body == std::string::npos) return "the cube's upload failed: " + made;
+  const std::string session = nlohmann::json::parse(made.substr(made_body + 4))["session"];
+
+  std::string input(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  constexpr std::string_view placeholder = "SESSION-ID-OF-THE-FUZZ-TARGET-00";
+  for (size_t at = input.find(placeholder); at != std::string::npos; at = input.find(placeholder, at))
+    input.replace(at, placeholder.size(), session);
+  const std::string answer = server.serve_bytes(input);
+
+  // Answer after answer: a status line, headers, a body of Content-Length bytes (none
+  // after a HEAD, which is told by what follows).
+  std::string_view rest = answer;
+  for (int answers = 1; !rest.empty(); ++answers) {
+    if (answers > 100) return "more than 100 answers on one connection";
+    if (!rest.starts_with("HTTP/1.1 ") || rest.size() < 13) return "an answer does not start with a status line";
+    const int status = std::atoi(std::string(rest.substr(9, 3)).c_str());
+    if (status < 100 || status >= 500) return "answer " + std::to_string(answers) + " has status " + std::to_string(status);
+    const size_t end = rest.find("\r\n\r\n");
+    if (end == std::string::npos) return "an answer's headers do not end";
+    const std::string_view headers = rest.substr(0, end + 2);
+    size_t length = 0;
+    if (const size_t at = headers.find("\r\nContent-Length: "); at != std::string_view::npos)
+      length = std::strtoull(headers.data() + at + 18, nullptr, 10);
+    rest.remove_prefix(end + 4);
+    const bool body_follows = length <= rest.size() && (length == rest.size() || rest.substr(length).starts_with("HTTP/1.1 "));
+    if (body_follows) rest.remove_prefix(length);
+    else if (!rest.empty() && !rest.starts_with("HTTP/1.1 ")) return "an answer's body is not Content-Length bytes";
+  }
+  return {};
 }
 
 } // namespace meander::fuzz

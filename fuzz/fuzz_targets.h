@@ -39,4 +39,12 @@ std::string make_request_target(std::span<const uint8_t> bytes);
 // Refused with Meander's own error, or a repaired mesh as repair() promises.
 std::string upload_target(std::span<const uint8_t> bytes);
 
+// The bytes as one connection to the studio's HTTP server (StudioServer::serve_bytes: its
+// own connection code and httplib's parsing, without a socket), after an upload that
+// made a session: every "SESSION-ID-OF-THE-FUZZ-TARGET-00" in the bytes is that session's
+// id, so that make and result requests reach real work. The server must answer only
+// with well-framed HTTP answers (status line, headers, Content-Length bytes of body),
+// none of them a 5xx, at most one per request the connection may carry.
+std::string http_target(std::span<const uint8_t> bytes);
+
 } // namespace meander::fuzz

@@ -14,7 +14,7 @@ build=$(cd "$1" && pwd)
 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_read_obj fuzz_read_ply fuzz_read_stl fuzz_read_off fuzz_read_gltf fuzz_repair fuzz_curve fuzz_studio_request fuzz_studio_upload)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_read_obj fuzz_read_ply fuzz_read_stl fuzz_read_off fuzz_read_gltf fuzz_repair fuzz_curve fuzz_studio_request fuzz_studio_upload fuzz_studio_http)
 meshes=${MEANDER_SHARED_MESHES:-$root/../shared/meshes}
 
 # Links the files of folder $1 with one of the extensions $3... and at most 64 KiB into $2.

@@ -429,7 +429,9 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
 
 StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
                                const fs::path& scratch, const std::string& stem) {
-  const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode);
+  // A preview's files say so in their names, so that a script's saved files tell it too.
+  const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode) +
+                           (result.params.preview ? "_preview" : "");
   const bool curve_mode = result.params.mode == StudioMode::curve;
   const bool textured = !result.appearance.materials.empty();
   auto written_mesh = [&](const char* extension, const char* type) {

@@ -5,20 +5,211 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <new>
+#include <optional>
 #include <string_view>
 
 namespace meander {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using Clock = std::chrono::steady_clock;
 
 namespace {
+
+// Requests one connection may carry, and how long it may wait for the next.
+constexpr size_t keep_alive_requests = 100;
+constexpr time_t keep_alive_seconds = 5;
+
+// One connection's bytes, from a socket or from memory (StudioServer::serve_bytes), held to
+// StudioServerOptions' limits. Debian's httplib (0.11) reads a request line or header
+// line of any length into memory, any number of headers, a chunked body without the
+// payload limit, and waits as long as a byte comes within each read timeout; here a read
+// fails once a request's headers pass max_header bytes or header_timeout, its body
+// passes its Content-Length, or it passes request_timeout. httplib answers a failed
+// read with 400 or by closing the connection.
+class ConnectionStream final : public httplib::Stream {
+public:
+  ConnectionStream(int socket, const StudioServerOptions& limits) : socket_(socket), limits_(limits) {}
+  ConnectionStream(std::string_view input, const StudioServerOptions& limits) : input_(input), limits_(limits) {}
+
+  // Waits up to `idle` for the next request's first byte (false at the end, on silence,
+  // or once `open` turns false), then starts that request's budget and clocks.
+  template <class Open> bool next_request(std::chrono::milliseconds idle, Open open) {
+    const auto deadline = Clock::now() + idle;
+    while (pending().empty()) {
+      if (socket_ < 0 || !open() || Clock::now() >= deadline) return false;
+      // Short waits, so that a stopping server is noticed within 50 ms.
+      if (wait(POLLIN, std::min(deadline, Clock::now() + std::chrono::milliseconds(50))) && receive() <= 0) return false;
+    }
+    const auto now = Clock::now();
+    header_deadline_ = now + limits_.header_timeout;
+    request_deadline_ = now + limits_.request_timeout;
+    response_deadline_.reset();
+    in_headers_ = true;
+    allowed_ = limits_.max_header;
+    return true;
+  }
+  // The headers are in; the body may be `length` bytes and no more. Without a length
+  // (a transfer coding, or more than max_upload) no byte of it may be read.
+  void start_body(std::optional<uint64_t> length) {
+    in_headers_ = false;
+    body_known_ = length.has_value();
+    allowed_ = length.value_or(0);
+  }
+  // Whether the request was read to its end, so that the next one starts where it ended.
+  bool request_complete() const { return !in_headers_ && body_known_ && allowed_ == 0; }
+  const std::string& output() const { return output_; }
+
+  // Whether a read failed because the client was too slow.
+  bool too_slow() const { return too_slow_; }
+
+  // Before closing after a request that was not read to its end: lets the client finish
+  // sending (for at most `time`, the bytes dropped), so that it reads the answer (a 413,
+  // a 403) rather than a reset connection.
+  void drain(std::chrono::milliseconds time) {
+    shutdown(socket_, SHUT_WR);
+    const auto deadline = Clock::now() + time;
+    while (wait(POLLIN, deadline) && receive() > 0) {
+    }
+  }
+
+  bool is_readable() const override { return true; }
+  bool is_writable() const override { return true; }
+
+  ssize_t read(char* data, size_t size) override {
+    if (allowed_ == 0) return -1;
+    if (pending().empty()) {
+      if (socket_ < 0) return 0;
+      if (!wait(POLLIN, in_headers_ ? header_deadline_ : request_deadline_)) {
+        too_slow_ = true;
+        return -1;
+      }
+      if (const ssize_t n = receive(); n <= 0) return n;
+    }
+    const size_t n = size_t(std::min<uint64_t>({size, allowed_, pending().size()}));
+    std::memcpy(data, pending().data(), n);
+    taken_ += n;
+    allowed_ -= n;
+    return ssize_t(n);
+  }
+
+  ssize_t write(const char* data, size_t size) override {
+    if (socket_ < 0) {
+      output_.append(data, size);
+      return ssize_t(size);
+    }
+    if (!response_deadline_) response_deadline_ = Clock::now() + limits_.request_timeout;
+    if (!wait(POLLOUT, *response_deadline_)) return -1;
+    return send(socket_, data, size, MSG_NOSIGNAL | MSG_DONTWAIT);
+  }
+
+  // The studio does not look at addresses.
+  void get_remote_ip_and_port(std::string&, int&) const override {}
+  void get_local_ip_and_port(std::string&, int&) const override {}
+  socket_t socket() const override { return socket_; }
+
+private:
+  std::string_view pending() const { return (socket_ < 0 ? input_ : std::string_view(buffer_, filled_)).substr(taken_); }
+
+  // Refills the buffer from the socket once wait() found bytes: their count, 0 at the
+  // end, -1 on an error.
+  ssize_t receive() {
+    const ssize_t n = recv(socket_, buffer_, sizeof buffer_, 0);
+    if (n > 0) filled_ = size_t(n), taken_ = 0;
+    return n;
+  }
+
+  // Whether the socket is ready for `events` before both `deadline` and idle_timeout.
+  bool wait(short events, Clock::time_point deadline) const {
+    const auto until = std::min(deadline, Clock::now() + limits_.idle_timeout);
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now()).count();
+      if (left <= 0) return false;
+      pollfd fd{socket_, events, 0};
+      const int ready = poll(&fd, 1, int(left));
+      if (ready > 0) return true;
+      if (ready == 0 || errno != EINTR) return false;
+    }
+  }
+
+  int socket_ = -1;
+  std::string_view input_;
+  const StudioServerOptions& limits_;
+  char buffer_[4096];
+  size_t filled_ = 0, taken_ = 0;
+  bool in_headers_ = true, body_known_ = false, too_slow_ = false;
+  uint64_t allowed_ = 0; // bytes the request may still send
+  Clock::time_point header_deadline_, request_deadline_;
+  std::optional<Clock::time_point> response_deadline_;
+  std::string output_;
+};
+
+// httplib's server with its connections served through ConnectionStream, one request
+// after another, each prepared before httplib reads its body.
+class GuardedServer final : public httplib::Server {
+public:
+  explicit GuardedServer(const StudioServerOptions& limits) : limits_(limits) {}
+
+  void serve(ConnectionStream& stream) {
+    for (size_t count = keep_alive_requests; count > 0; --count) {
+      if (!stream.next_request(std::chrono::seconds(keep_alive_seconds), [this] { return svr_sock_ != INVALID_SOCKET; }))
+        return;
+      bool closed = false;
+      const bool written = process_request(stream, count == 1, closed, [&](httplib::Request& req) { prepare(req, stream); });
+      // A request not read to its end (refused before its body, or cut off) leaves bytes
+      // that are not the next request: never parse them as one.
+      if (!written || closed || !stream.request_complete()) return;
+    }
+  }
+
+  // httplib listens with a backlog of 5: a burst of connections (100 uploads at once)
+  // overflows it and some are reset. Listening again only lengthens the queue.
+  void lengthen_backlog() {
+    if (::listen(svr_sock_, SOMAXCONN) != 0) throw IOError("cannot listen: " + std::string(std::strerror(errno)));
+  }
+
+private:
+  // Called once the headers are in, before routing and the body.
+  void prepare(httplib::Request& req, ConnectionStream& stream) const {
+    std::optional<uint64_t> length;
+    if (req.has_header("Content-Length")) {
+      // As httplib reads it; a length it refuses (413) gets no byte of its body read.
+      const uint64_t claimed = std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10);
+      if (claimed <= limits_.max_upload) length = claimed;
+    } else if (!req.has_header("Transfer-Encoding")) {
+      // No length and no transfer coding: no body (RFC 9112, 6.3), where httplib would
+      // read until the client closes. (A transfer coding is refused before routing.)
+      req.set_header("Content-Length", "0");
+      length = 0;
+    }
+    // A Range header of many ranges makes httplib copy the answer once per range.
+    req.ranges.clear();
+    stream.start_body(length);
+  }
+
+  bool process_and_close_socket(socket_t socket) override {
+    ConnectionStream stream(socket, limits_);
+    serve(stream);
+    if (!stream.request_complete() && !stream.too_slow()) stream.drain(std::chrono::seconds(2));
+    shutdown(socket, SHUT_RDWR);
+    close(socket);
+    return true;
+  }
+
+  const StudioServerOptions& limits_;
+};
 
 struct Asset {
   std::string bytes;
@@ -53,7 +244,9 @@ std::map<std::string, Asset> read_page(const fs::path& folder) {
 
 void send_json(httplib::Response& res, int status, const json& body) {
   res.status = status;
-  res.set_content(body.dump(), "application/json");
+  // Messages quote what the client sent (a path, a file name), which need not be UTF-8;
+  // dump() would throw, and from httplib's error handler that ended the process.
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void send_error(httplib::Response& res, int status, const std::string& message) {
@@ -131,7 +324,7 @@ struct StudioServer::Impl {
   std::atomic<uint64_t> downloads{0};
   std::atomic<uint64_t> revisions{0};
   int port = 0; // once bound
-  httplib::Server http;
+  GuardedServer http{options};
 
   explicit Impl(StudioServerOptions o) : options(std::move(o)), page(read_page(options.page)), sessions(options.sessions) {
     std::string folder = (fs::temp_directory_path() / "meander-studio-XXXXXX").string();
@@ -151,26 +344,49 @@ struct StudioServer::Impl {
     send_json(res, 200, surface_json(id, *session->surface));
   }
 
+  std::string too_large(const httplib::Request& req) const {
+    return "upload too large: " + req.get_header_value("Content-Length") + " bytes (this server's --max-upload is " +
+           std::to_string(options.max_upload) + " bytes)";
+  }
+
   void routes() {
     http.set_payload_max_length(options.max_upload);
+    http.new_task_queue = [threads = size_t(std::max(1, options.threads))] { return new httplib::ThreadPool(threads); };
+    // What the Keep-Alive header of each answer says (GuardedServer::serve keeps to it).
+    http.set_keep_alive_max_count(keep_alive_requests);
+    http.set_keep_alive_timeout(keep_alive_seconds);
     http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const std::string origin = req.get_header_value("Origin");
       const std::string refusal = studio_request_refusal(options.host, port, req.method, req.get_header_value("Host"),
                                                          req.has_header("Origin") ? &origin : nullptr);
-      if (refusal.empty()) return httplib::Server::HandlerResponse::Unhandled;
-      send_error(res, 403, refusal);
-      return httplib::Server::HandlerResponse::Handled;
+      if (!refusal.empty()) {
+        send_error(res, 403, refusal);
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      // Both would have httplib read a body past --max-upload: chunks are read without
+      // the limit, and a gzip or brotli body is inflated without one.
+      if (req.has_header("Transfer-Encoding")) {
+        send_error(res, 411, "send the body with a Content-Length (Transfer-Encoding is not accepted)");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      if (req.has_header("Content-Encoding") && req.get_header_value("Content-Encoding") != "identity") {
+        send_error(res, 415, "send the body uncompressed (Content-Encoding is not accepted)");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      return httplib::Server::HandlerResponse::Unhandled;
     });
     // httplib answers 404 and 413 itself, with an empty body; say what happened.
     http.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
       if (!res.body.empty()) return;
       if (res.status == 413)
-        send_error(res, 413, "upload too large: " + req.get_header_value("Content-Length") +
-                                 " bytes (this server's --max-upload is " + std::to_string(options.max_upload) +
-                                 " bytes)");
+        send_error(res, 413, too_large(req));
       else if (res.status == 404)
         send_error(res, 404, "no such page or API: " + req.method + " " + req.path.substr(0, 200));
+      else if (res.status == 400)
+        send_error(res, 400,
+                   "malformed request: its request line, headers (at most " + std::to_string(options.max_header) +
+                       " bytes) or body could not be read");
       else
         send_error(res, res.status, "request refused (HTTP " + std::to_string(res.status) + ")");
     });
@@ -184,13 +400,32 @@ struct StudioServer::Impl {
                  {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}}});
     });
 
-    http.Post("/api/mesh", [this](const httplib::Request& req, httplib::Response& res) {
+    // The body read part by part, keeping only the field `mesh` (httplib would keep every
+    // field and then copy the one asked for).
+    http.Post("/api/mesh", [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& read) {
       answer(res, [&] {
-        if (!req.is_multipart_form_data() || !req.has_file("mesh"))
-          throw UsageError("expected the mesh file as the multipart/form-data field 'mesh'");
-        const httplib::MultipartFormData file = req.get_file_value("mesh");
-        add_session(res, load_studio_surface(file.filename.empty() ? "upload" : file.filename, file.content,
-                                             options.max_faces));
+        const std::string expected = "expected the mesh file as the multipart/form-data field 'mesh'";
+        if (!req.is_multipart_form_data()) throw UsageError(expected);
+        std::string filename, bytes;
+        int meshes = 0;
+        bool in_mesh = false;
+        const bool read_whole = read(
+            [&](const httplib::MultipartFormData& part) {
+              in_mesh = part.name == "mesh";
+              if (in_mesh) filename = part.filename;
+              return !in_mesh || ++meshes == 1;
+            },
+            [&](const char* data, size_t size) {
+              if (in_mesh) bytes.append(data, size);
+              return true;
+            });
+        if (res.status == 413) return send_error(res, 413, too_large(req));
+        if (meshes > 1) throw UsageError("more than one field 'mesh': upload one file per request");
+        if (!read_whole)
+          throw UsageError("malformed multipart/form-data body: no boundary in its Content-Type, bad part headers, or no "
+                           "closing boundary");
+        if (meshes == 0) throw UsageError(expected);
+        add_session(res, load_studio_surface(filename.empty() ? "upload" : filename, bytes, options.max_faces));
       });
     });
 
@@ -262,9 +497,11 @@ int StudioServer::bind() {
   if (impl_->options.port == 0) {
     const int port = impl_->http.bind_to_any_port(impl_->options.host);
     if (port <= 0) throw IOError("cannot listen on " + where);
+    impl_->http.lengthen_backlog();
     return impl_->port = port;
   }
   if (!impl_->http.bind_to_port(impl_->options.host, impl_->options.port)) throw IOError("cannot listen on " + where);
+  impl_->http.lengthen_backlog();
   return impl_->port = impl_->options.port;
 }
 
@@ -272,6 +509,12 @@ void StudioServer::run() { impl_->http.listen_after_bind(); }
 
 void StudioServer::stop() {
   if (impl_->http.is_running()) impl_->http.stop();
+}
+
+std::string StudioServer::serve_bytes(std::string_view connection_bytes) {
+  ConnectionStream stream(connection_bytes, impl_->options);
+  impl_->http.serve(stream);
+  return stream.output();
 }
 
 } // namespace meander

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <string>
 
 namespace meander {
@@ -440,43 +439,6 @@ ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   return {sweep_mesh(sweep, options.shape, options.sides, radius), radius};
 }
 
-std::vector<size_t> every_rung(size_t first, size_t last) {
-  std::vector<size_t> rungs(last - first);
-  std::iota(rungs.begin(), rungs.end(), first);
-  return rungs;
-}
-
-// The rungs [first, last) of one cycle's strip that leave it without folds: the quad
-// from one kept rung to the next faces the rungs' up side. Where a thin triangle turns
-// the curve round, its rungs lie along the curve and the strip doubles back over
-// itself; leaving out the rung that starts the way back joins the rungs on either side
-// of the fold directly. A Moebius strip closes onto its first rung turned over.
-std::vector<size_t> unfolded_rungs(const std::vector<Vec3>& left, const std::vector<Vec3>& right, const std::vector<Vec3>& up,
-                                   size_t first, size_t last, bool mobius) {
-  const size_t count = last - first;
-  auto forward = [&](size_t a, size_t b, bool turned) {
-    const Vec3 lb = turned ? right[b] : left[b], rb = turned ? left[b] : right[b];
-    const Vec3 n = cross(rb - left[a], lb - right[a]);
-    return dot(n, up[a] + (turned ? up[b] * -1.0f : up[b])) > 0;
-  };
-  // Start where the strip runs forward on both sides, so that the first rung stays. A
-  // Moebius strip starts at its seam, so that only its closing quad is turned over.
-  size_t start = 0;
-  for (size_t k = 0; k < count && !mobius; ++k) {
-    const size_t r = first + k;
-    if (forward(first + (k + count - 1) % count, r, false) && forward(r, first + (k + 1) % count, false)) {
-      start = k;
-      break;
-    }
-  }
-  std::vector<size_t> kept{first + start};
-  for (size_t j = 1; j < count; ++j)
-    if (const size_t r = first + (start + j) % count; forward(kept.back(), r, false)) kept.push_back(r);
-  while (kept.size() > 3 && !forward(kept.back(), kept.front(), mobius)) kept.pop_back();
-  // No way forward anywhere (a strip as good as flat): keep it as it is.
-  return kept.size() < 3 ? every_rung(first, last) : kept;
-}
-
 PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
   auto unit = [](double v) { return v >= 0 && v <= 1; };
   if (!unit(options.s) || !unit(options.t))
@@ -534,23 +496,19 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   const int32_t width = ribbon ? 2 : 4;
   PolygonMesh control;
   control.positions.reserve(left.size() * size_t(width));
-  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
-    const int32_t first_rung = int32_t(control.positions.size()) / width;
-    const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), last = 2 * size_t(cycle.cycle_start[size_t(c) + 1]);
-    // A ribbon keeps every rung: its folds lie inside the cycle's triangles, where the
-    // strip stays clear of itself; joining rungs across a fold would leave them.
-    for (const size_t r : ribbon ? every_rung(first, last) : unfolded_rungs(left, right, up, first, last, ladder.mobius[size_t(c)])) {
-      if (ribbon) {
-        control.positions.insert(control.positions.end(), {left[r], right[r]});
-      } else {
-        const Vec3 h = up[r] * half_thickness(r);
-        control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
-      }
+  for (size_t r = 0; r < left.size(); ++r) {
+    if (ribbon) {
+      control.positions.insert(control.positions.end(), {left[r], right[r]});
+    } else {
+      const Vec3 h = up[r] * half_thickness(r);
+      control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
     }
+  }
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const int32_t first = 2 * cycle.cycle_start[size_t(c)], rungs = 2 * cycle.cycle_start[size_t(c) + 1] - first;
     // Where a Moebius cycle closes, left meets right: a ribbon's rung is reversed, a
     // slab turned by half a turn (both directions swap).
-    connect_rings(control, first_rung * width, int32_t(control.positions.size()) / width - first_rung, width, !ribbon,
-                  ladder.mobius[size_t(c)] ? width / 2 : 0);
+    connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
   }
   return subdivide(control, {.levels = options.levels, .limit = true});
 }

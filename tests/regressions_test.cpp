@@ -29,6 +29,7 @@ const std::map<std::string, Target>& targets() {
       {"fuzz_curve", fuzz::curve_target},
       {"fuzz_studio_request", fuzz::make_request_target},
       {"fuzz_studio_upload", fuzz::upload_target},
+      {"fuzz_studio_http", fuzz::http_target},
   };
   return all;
 }

@@ -1,5 +1,6 @@
 // `meander serve` over real HTTP: the server on a free port of 127.0.0.1, httplib's client.
 #include "meander/studio_server.h"
+#include "running_server.h"
 #include "test_support.h"
 
 #include <httplib.h>
@@ -16,20 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-// A server on a free port, serving from its own thread until destroyed.
-struct RunningServer {
-  explicit RunningServer(StudioServerOptions options) : server(std::move(options)) {
-    port = server.bind();
-    thread = std::thread([this] { server.run(); });
-  }
-  ~RunningServer() {
-    server.stop();
-    thread.join();
-  }
-  StudioServer server;
-  int port = 0;
-  std::thread thread;
-};
+using test::RunningServer;
 
 class StudioServerTest : public ::testing::Test {
 protected:
@@ -80,6 +68,37 @@ TEST_F(StudioServerTest, RoundTripOnTheDemoModel) {
     EXPECT_EQ(res->status, 200) << file << ": " << res->body;
     EXPECT_GT(res->body.size(), 16u) << file;
   }
+}
+
+// A script may save a preview as it saves a full result (the page waits for the full one).
+TEST_F(StudioServerTest, APreviewDownloadsLikeAFullResultUnderItsOwnName) {
+  const std::string session = demo_session();
+  auto c = client();
+  const auto made = c.Post("/api/make", json{{"session", session}, {"mode", "variable-wire"}, {"preview", true}}.dump(),
+                           "application/json");
+  ASSERT_TRUE(made);
+  ASSERT_EQ(made->status, 200) << made->body;
+  const json stats = json::parse(made->body);
+  ASSERT_EQ(stats["preview"], true);
+  const auto stl = c.Get("/api/result/" + session + "/result.stl");
+  ASSERT_TRUE(stl);
+  ASSERT_EQ(stl->status, 200) << stl->body;
+  uint32_t triangles = 0;
+  std::memcpy(&triangles, stl->body.data() + 80, 4);
+  EXPECT_EQ(triangles, stats["triangles"].get<uint32_t>());
+  EXPECT_EQ(stl->body.size(), 84 + 50 * size_t(triangles));
+  EXPECT_EQ(stl->get_header_value("Content-Disposition"), "attachment; filename=\"pretzel_variable-wire_preview.stl\"");
+  for (const char* file : {"result.3mf", "result.glb", "result.zip", "curve.svg"}) {
+    const auto res = c.Get("/api/result/" + session + "/" + file);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200) << file << ": " << res->body;
+    EXPECT_NE(res->get_header_value("Content-Disposition").find("_preview."), std::string::npos) << file;
+  }
+  // The full result that follows takes the plain name.
+  ASSERT_EQ(c.Post("/api/make", json{{"session", session}, {"mode", "variable-wire"}, {"levels", 0}}.dump(), "application/json")->status,
+            200);
+  EXPECT_EQ(c.Get("/api/result/" + session + "/result.stl")->get_header_value("Content-Disposition"),
+            "attachment; filename=\"pretzel_variable-wire.stl\"");
 }
 
 TEST_F(StudioServerTest, UploadOfAMeshFile) {

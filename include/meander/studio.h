@@ -142,7 +142,7 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
 struct StudioDownload {
   std::string bytes;
   std::string content_type;
-  std::string filename; // offered to the browser (Content-Disposition)
+  std::string filename; // offered to the browser (Content-Disposition): NAME_MODE[_preview].EXT
 };
 
 // One file of the result. Files made by the library's writers go through `scratch`, a

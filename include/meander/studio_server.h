@@ -5,10 +5,12 @@
 
 #include "meander/studio.h"
 
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace meander {
 
@@ -27,6 +29,19 @@ struct StudioServerOptions {
   // A make request whose result would hold more elements (studio_result_size: curve
   // points, triangles, texture pixels) is refused (413) before any work.
   int64_t max_result = 12'000'000;
+  // What one connection may send, and how slowly, before it is dropped (a failed read
+  // is answered 400 or by closing): the request line and headers together at most
+  // max_header bytes within header_timeout of their first byte, the whole request within
+  // request_timeout (and the whole answer taken within it), and no wait for the client
+  // longer than idle_timeout. A connection carries at most 100 requests and waits 5 s
+  // for the next one.
+  size_t max_header = size_t(64) << 10;
+  std::chrono::milliseconds idle_timeout{5'000};
+  std::chrono::milliseconds header_timeout{10'000};
+  std::chrono::milliseconds request_timeout{120'000};
+  // Connections served at once (more wait for a thread); each holds at most one request
+  // body of max_upload bytes, so peak memory is about threads * max_upload plus the work.
+  int threads = 16;
 };
 
 // Whether a request may reach the API: its Host must name this server (127.0.0.1,
@@ -52,6 +67,11 @@ public:
   // Serves until stop() (from another thread or a signal handler's thread).
   void run();
   void stop();
+
+  // Answers the raw bytes of a connection (one or more requests, keep-alive included)
+  // as the server answers a socket, with the same limits, and returns what it writes
+  // back; nothing touches the network. For the HTTP fuzz target and tests.
+  std::string serve_bytes(std::string_view connection_bytes);
 
 private:
   struct Impl;
