@@ -75,7 +75,8 @@ void print_text(const std::string& input, const MeshReport& r, const Printabilit
   std::printf("vertices               %d\n", r.vertices);
   std::printf("faces                  %d (%s)\n", r.faces, sizes.c_str());
   std::printf("edges                  %d\n", r.edges);
-  std::printf("boundary               %d edges in %d loops\n", r.boundary_edges, r.boundary_loops);
+  std::printf("boundary               %d edge%s in %d loop%s\n", r.boundary_edges, r.boundary_edges == 1 ? "" : "s",
+              r.boundary_loops, r.boundary_loops == 1 ? "" : "s");
   std::printf("components             %zu\n", r.components.size());
   std::printf("orientable             %s\n", r.orientable ? "yes" : "no");
   std::printf("non-manifold           %d edges, %d vertices\n", r.non_manifold_edges, r.non_manifold_vertices);
@@ -89,8 +90,8 @@ void print_text(const std::string& input, const MeshReport& r, const Printabilit
                 r.bounding_box.min.z, r.bounding_box.max.x, r.bounding_box.max.y, r.bounding_box.max.z);
   for (size_t i = 0; i < r.components.size(); ++i) {
     const ComponentReport& c = r.components[i];
-    std::printf("component %-4zu         %d faces, %d vertices, %d edges, %d boundary loops, chi %lld, %s, genus %s\n", i,
-                c.faces, c.vertices, c.edges, c.boundary_loops, (long long)c.euler_characteristic,
+    std::printf("component %-4zu         %d faces, %d vertices, %d edges, %d boundary loop%s, chi %lld, %s, genus %s\n", i,
+                c.faces, c.vertices, c.edges, c.boundary_loops, c.boundary_loops == 1 ? "" : "s", (long long)c.euler_characteristic,
                 c.orientable ? "orientable" : "non-orientable", genus_text(c).c_str());
   }
   if (solid) std::printf("solid                  %s\n", printability_summary(*solid).c_str());
