@@ -64,7 +64,8 @@ sanitize-config: deps
 
 test-sanitize: sanitize-config validator
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
-	cd $(SANITIZE_BUILD) && ctest --output-on-failure -j $(JOBS) $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)')
+	cd $(SANITIZE_BUILD) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --output-on-failure -j $(JOBS) \
+	  $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)')
 
 fuzz: sanitize-config
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
