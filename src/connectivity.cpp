@@ -1,10 +1,13 @@
 #include "meander/connectivity.h"
 
 #include <algorithm>
-#include <atomic>
+#include <tuple>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 namespace meander {
 
@@ -13,16 +16,8 @@ namespace {
 // Fixed blocks of vertices, so that the edge numbering does not depend on how the
 // threads share the work.
 constexpr int32_t kVertexBlock = 1 << 15;
-
-void for_each_face(const PolygonMesh& mesh, auto&& body) {
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, mesh.num_faces(), 1 << 14), [&](const tbb::blocked_range<int32_t>& r) {
-    for (int32_t f = r.begin(); f < r.end(); ++f) {
-      const int32_t b = mesh.face_start[f], e = mesh.face_start[f + 1];
-      for (int32_t h = b; h < e; ++h)
-        body(f, h, mesh.face_vertices[size_t(h)], mesh.face_vertices[size_t(h + 1 == e ? b : h + 1)]);
-    }
-  });
-}
+// Chunks of faces counted apart: each needs a count per vertex.
+constexpr int32_t kMaxChunks = 8;
 
 } // namespace
 
@@ -31,47 +26,78 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
   const int32_t nh = mesh.num_corners();
   Connectivity c;
   c.halfedge_face.resize(size_t(nh));
-  // Until the end, halfedge_edge holds each halfedge's upper vertex: reusing the output
-  // array spares a temporary as large as the mesh (fresh pages cost more than the work).
-  std::vector<int32_t>& upper = c.halfedge_edge;
-  upper.resize(size_t(nh));
-  std::vector<int32_t> bucket(size_t(nv) + 1, 0);
-  for_each_face(mesh, [&](int32_t f, int32_t h, int32_t u, int32_t v) {
+  // Counting sort by lower vertex (linear, unlike a hash map or a comparison sort), in
+  // a few fixed chunks of faces with a count per chunk and vertex: no atomic operations,
+  // which cost more than the counting. The sort below restores one order whatever the
+  // chunks. Each halfedge is placed with its upper vertex beside it, so that the sorts
+  // and scans below read their keys in order instead of gathering them from all over a
+  // halfedge-indexed array; the keys live in halfedge_edge's memory until the edges are
+  // numbered (fresh pages cost more than the work).
+  const int32_t chunks = std::clamp(tbb::this_task_arena::max_concurrency(), 1, kMaxChunks);
+  const int32_t nf = mesh.num_faces();
+  auto chunk_faces = [&](int32_t k) { return int32_t(int64_t(nf) * k / chunks); };
+  // place[lo * chunks + k]: where chunk k puts its next halfedge of lower vertex lo.
+  std::vector<int32_t> place(size_t(nv) * size_t(chunks), 0);
+  auto for_each_chunk = [&](auto&& body) {
+    tbb::parallel_for(0, chunks, [&](int32_t k) {
+      int32_t* at = place.data() + k;
+      for (int32_t f = chunk_faces(k); f < chunk_faces(k + 1); ++f) {
+        const int32_t b = mesh.face_start[f], e = mesh.face_start[f + 1];
+        for (int32_t h = b; h < e; ++h) {
+          const int32_t u = mesh.face_vertices[size_t(h)], v = mesh.face_vertices[size_t(h + 1 == e ? b : h + 1)];
+          body(f, h, u, v, at[size_t(std::min(u, v)) * size_t(chunks)]);
+        }
+      }
+    }, tbb::static_partitioner());
+  };
+  for_each_chunk([&](int32_t f, int32_t h, int32_t, int32_t, int32_t& count) {
     c.halfedge_face[size_t(h)] = f;
-    upper[size_t(h)] = std::max(u, v);
-    std::atomic_ref<int32_t>(bucket[size_t(std::min(u, v)) + 1]).fetch_add(1, std::memory_order_relaxed);
+    ++count;
   });
-  for (int32_t v = 0; v < nv; ++v) bucket[size_t(v) + 1] += bucket[size_t(v)];
-
-  // Counting sort by lower vertex (linear, unlike a hash map or a comparison sort).
-  // Placing advances bucket[lo] to the end of lo's range, which is where lo+1's begins.
-  // Threads place in any order; the sort below restores one.
+  // range[lo] .. range[lo + 1]: the halfedges of lower vertex lo once placed.
+  std::vector<int32_t> range(size_t(nv) + 1);
+  int32_t placed = 0;
+  for (size_t lo = 0; lo < size_t(nv); ++lo) {
+    range[lo] = placed;
+    for (size_t k = 0; k < size_t(chunks); ++k) placed += std::exchange(place[lo * size_t(chunks) + k], placed);
+  }
+  range[size_t(nv)] = placed;
   std::vector<int32_t>& sorted = c.edge_halfedges;
+  std::vector<int32_t>& upper = c.halfedge_edge;
   sorted.resize(size_t(nh));
-  for_each_face(mesh, [&](int32_t, int32_t h, int32_t u, int32_t v) {
-    const int32_t at = std::atomic_ref<int32_t>(bucket[size_t(std::min(u, v))]).fetch_add(1, std::memory_order_relaxed);
+  upper.resize(size_t(nh));
+  for_each_chunk([&](int32_t, int32_t h, int32_t u, int32_t v, int32_t& at) {
     sorted[size_t(at)] = h;
+    upper[size_t(at)] = std::max(u, v);
+    ++at;
   });
+  std::vector<int32_t>().swap(place);
 
   // Within a lower vertex's range (about half its valence), order by (upper vertex,
   // halfedge): the halfedges of each edge become contiguous and in increasing order.
   // Each block of vertices counts its edges, then writes them at its offset.
   const int32_t blocks = nv / kVertexBlock + 1;
   std::vector<int32_t> block_edges(size_t(blocks) + 1, 0);
-  auto range_start = [&](int32_t lo) { return lo == 0 ? 0 : bucket[size_t(lo) - 1]; };
-  auto before = [&](int32_t a, int32_t b) { return upper[size_t(a)] != upper[size_t(b)] ? upper[size_t(a)] < upper[size_t(b)] : a < b; };
   tbb::parallel_for(0, blocks, [&](int32_t block) {
     int32_t edges = 0;
+    std::vector<std::pair<int32_t, int32_t>> large;
     for (int32_t lo = block * kVertexBlock; lo < std::min(nv, (block + 1) * kVertexBlock); ++lo) {
-      int32_t* range = sorted.data() + range_start(lo);
-      const int32_t n = bucket[size_t(lo)] - range_start(lo);
+      const int32_t first = range[size_t(lo)], n = range[size_t(lo) + 1] - first;
+      int32_t* key = upper.data() + first;
+      int32_t* h = sorted.data() + first;
       if (n > 32) {
-        std::sort(range, range + n, before);
+        large.resize(size_t(n));
+        for (int32_t i = 0; i < n; ++i) large[size_t(i)] = {key[i], h[i]};
+        std::sort(large.begin(), large.end());
+        for (int32_t i = 0; i < n; ++i) std::tie(key[i], h[i]) = large[size_t(i)];
       } else {
         for (int32_t i = 1; i < n; ++i)
-          for (int32_t j = i; j > 0 && before(range[j], range[j - 1]); --j) std::swap(range[j], range[j - 1]);
+          for (int32_t j = i; j > 0 && std::pair(key[j], h[j]) < std::pair(key[j - 1], h[j - 1]); --j) {
+            std::swap(key[j], key[j - 1]);
+            std::swap(h[j], h[j - 1]);
+          }
       }
-      for (int32_t i = 0; i < n; ++i) edges += i == 0 || upper[size_t(range[i])] != upper[size_t(range[i - 1])];
+      for (int32_t i = 0; i < n; ++i) edges += i == 0 || key[i] != key[i - 1];
     }
     block_edges[size_t(block) + 1] = edges;
   });
@@ -83,11 +109,11 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
   tbb::parallel_for(0, blocks, [&](int32_t block) {
     int32_t e = block_edges[size_t(block)];
     for (int32_t lo = block * kVertexBlock; lo < std::min(nv, (block + 1) * kVertexBlock); ++lo) {
-      const int32_t first = range_start(lo), n = bucket[size_t(lo)] - first;
-      for (int32_t i = 0; i < n; ++i)
-        if (i == 0 || upper[size_t(sorted[size_t(first + i)])] != upper[size_t(sorted[size_t(first + i - 1)])]) {
-          c.edge_vertices[size_t(e)] = {lo, upper[size_t(sorted[size_t(first + i)])]};
-          c.edge_start[size_t(e)] = first + i;
+      const int32_t first = range[size_t(lo)], n = range[size_t(lo) + 1] - first;
+      for (int32_t i = first; i < first + n; ++i)
+        if (i == first || upper[size_t(i)] != upper[size_t(i - 1)]) {
+          c.edge_vertices[size_t(e)] = {lo, upper[size_t(i)]};
+          c.edge_start[size_t(e)] = i;
           ++e;
         }
     }
