@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
+#include <vector>
 
 namespace meander {
 namespace {
@@ -45,6 +47,37 @@ TEST(Polylines, PlyAndObjRoundTripClosedAndOpenPolylines) {
     write_polylines(curves, path);
     expect_same(read_polylines(path), curves);
   }
+}
+
+// Hundreds of thousands of edges in a binary PLY, over polylines of many sizes, open
+// and closed, with empty and single-point ones among them (which have no edge): every
+// edge must join the right points (the edge list is compared with one made here).
+TEST(Polylines, PlyEdgesOfManyPolylinesWithEmptyOnes) {
+  Polylines curves;
+  std::vector<int32_t> expected;
+  for (int32_t k = 0; k < 400; ++k) {
+    const int32_t n = k % 7 == 0 ? 0 : k % 7 == 1 ? 1 : 1 + (k * 7919) % 2500;
+    const bool open = k % 3 == 0;
+    const int32_t first = int32_t(curves.points.size());
+    for (int32_t i = 0; i < n; ++i) curves.points.push_back({float(k), float(i), 0});
+    curves.start.push_back(int32_t(curves.points.size()));
+    curves.open.push_back(open);
+    if (n >= 2)
+      for (int32_t i = 0; i < (open ? n - 1 : n); ++i) {
+        expected.push_back(first + i);
+        expected.push_back(i + 1 == n ? first : first + i + 1);
+      }
+  }
+  ASSERT_GT(expected.size() / 2, size_t(2) << 17);
+  const fs::path path = output_dir() / "blocks.ply";
+  write_polylines(curves, path);
+  const std::string bytes = test::read_file(path);
+  const std::string header_end = "end_header\n";
+  const size_t body = bytes.find(header_end) + header_end.size();
+  ASSERT_EQ(bytes.size(), body + curves.points.size() * 12 + expected.size() * 4);
+  std::vector<int32_t> edges(expected.size());
+  std::memcpy(edges.data(), bytes.data() + body + curves.points.size() * 12, edges.size() * 4);
+  EXPECT_EQ(edges, expected);
 }
 
 TEST(Polylines, AllClosedReadsBackWithoutOpenFlags) {
