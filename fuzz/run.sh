@@ -3,6 +3,8 @@
 # other (each on one core), and stops at the first finding, leaving its input in
 # BUILD/fuzz-runs/TARGET/ as libFuzzer names it (crash-*, leak-*, timeout-*, oom-*).
 # Usage: fuzz/run.sh BUILD SECONDS [TARGET...]
+# FUZZ_TIMEOUT (default 10): the seconds of wall clock one input may take; raise it for
+# runs niced beside other work, where a starved fuzzer waits for a core far longer.
 # Seeds: fuzz/seeds/TARGET/ (hand-made), the files of tests/corpus/ and the small meshes
 # of ../shared/meshes with the target's extension (linked in place, not copied), and the
 # regressions of tests/regressions/TARGET/. New inputs grow BUILD/fuzz-runs/TARGET/corpus/,
@@ -48,9 +50,9 @@ for target in "${targets[@]}"; do
     [ -d "$folder" ] && seeds+=("$folder")
   done
   echo "fuzz: $target for ${seconds}s"
-  # One input may take at most 10 s and the process 1 GiB: inputs are at most 16 KiB, so
-  # more means memory out of proportion to the input (a count believed before checking).
-  if ! (cd "$work" && "$build/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=1024 \
+  # One input may take at most FUZZ_TIMEOUT s and the process 1 GiB: inputs are at most
+  # 16 KiB, so more means memory out of proportion to the input (a count believed before checking).
+  if ! (cd "$work" && "$build/fuzz/$target" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=1024 \
           -max_len=16384 -print_final_stats=1 "$work/corpus" "${seeds[@]}" > "$work/log.txt" 2>&1); then
     tail -n 60 "$work/log.txt"
     echo "fuzz: $target found a problem; its input is in $work (log: $work/log.txt)"
