@@ -40,12 +40,11 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
   std::vector<int32_t> place(size_t(nv) * size_t(chunks), 0);
   auto for_each_chunk = [&](auto&& body) {
     tbb::parallel_for(0, chunks, [&](int32_t k) {
-      int32_t* at = place.data() + k;
       for (int32_t f = chunk_faces(k); f < chunk_faces(k + 1); ++f) {
         const int32_t b = mesh.face_start[f], e = mesh.face_start[f + 1];
         for (int32_t h = b; h < e; ++h) {
           const int32_t u = mesh.face_vertices[size_t(h)], v = mesh.face_vertices[size_t(h + 1 == e ? b : h + 1)];
-          body(f, h, u, v, at[size_t(std::min(u, v)) * size_t(chunks)]);
+          body(f, h, u, v, place[size_t(std::min(u, v)) * size_t(chunks) + size_t(k)]);
         }
       }
     }, tbb::static_partitioner());
