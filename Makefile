@@ -33,8 +33,11 @@ demo: build
 	./$(BUILD)/meander wire out/pretzel.obj -o out/pretzel_wire.stl --samples 2 --report out/pretzel_wire.json --png out/pretzel_wire.png --size 800x600
 	@echo "demo: outputs are in out/"
 
+# The suite in the Release build, the same suite again under the sanitizers (which also
+# builds the fuzz targets), then a short run of each fuzz target.
 test: build validator browser
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) test-sanitize
 	$(MAKE) fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS)
 
 # The Khronos glTF validator (npm) checks the GLB files Meander writes.
