@@ -74,7 +74,10 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
 
   // Within a lower vertex's range (about half its valence), order by (upper vertex,
   // halfedge): the halfedges of each edge become contiguous and in increasing order.
-  // Each block of vertices counts its edges, then writes them at its offset.
+  // Chunk k's faces come before chunk k+1's and each chunk places its halfedges in
+  // increasing order, so a range is already in increasing halfedge order and a stable
+  // sort by the upper vertex alone is enough. Each block of vertices counts its edges,
+  // then writes them at its offset.
   const int32_t blocks = nv / kVertexBlock + 1;
   std::vector<int32_t> block_edges(size_t(blocks) + 1, 0);
   tbb::parallel_for(0, blocks, [&](int32_t block) {
@@ -90,11 +93,16 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
         std::sort(large.begin(), large.end());
         for (int32_t i = 0; i < n; ++i) std::tie(key[i], h[i]) = large[size_t(i)];
       } else {
-        for (int32_t i = 1; i < n; ++i)
-          for (int32_t j = i; j > 0 && std::pair(key[j], h[j]) < std::pair(key[j - 1], h[j - 1]); --j) {
-            std::swap(key[j], key[j - 1]);
-            std::swap(h[j], h[j - 1]);
+        for (int32_t i = 1; i < n; ++i) {
+          const int32_t k = key[i], hi = h[i];
+          int32_t j = i;
+          for (; j > 0 && key[j - 1] > k; --j) {
+            key[j] = key[j - 1];
+            h[j] = h[j - 1];
           }
+          key[j] = k;
+          h[j] = hi;
+        }
       }
       for (int32_t i = 0; i < n; ++i) edges += i == 0 || key[i] != key[i - 1];
     }
