@@ -21,6 +21,7 @@ struct DuotoneArgs {
   uint64_t seed = 1;
   int32_t texture_size = 1024;
   int subdivide = 0;
+  int64_t max_faces = 0;
   PictureArgs picture;
   bool strict = false, verbose = false;
 };
@@ -48,7 +49,7 @@ void run_duotone(const DuotoneArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  const RepairResult input = read_and_repair(a.input, a.strict, log);
+  const RepairResult input = read_and_repair(a.input, a.strict, log, a.max_faces);
   log.restart();
   const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
@@ -112,6 +113,7 @@ Command add_duotone_command(CLI::App& parent) {
   app->add_option("--regions", args->regions, "also write the two colour regions cut along the curve: A.ply,B.ply (binary)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the textured surface to this picture (.png)");
   add_picture_options(*app, args->picture, "the --png picture", png);
+  app->add_option("--max-faces", args->max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
   return {app, [args] { run_duotone(*args); }};
