@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace meander {
 namespace {
@@ -312,6 +314,50 @@ INSTANTIATE_TEST_SUITE_P(
         Malformed{"ascii_junk_after_endsolid.stl", "solid t\n" + ascii_facet + "endsolid t\njunk\n",
                   ":10: expected 'solid', found 'junk'"}),
     case_name);
+
+// A large OFF file (a grid of quads, more than 1 MiB) with comments, blank lines and CRLF
+// among its vertex lines: the mesh is read whole, and an error in either section is
+// reported at its own line, counted through all of them, the first one in the file.
+std::string large_off(int32_t n, int32_t bad_vertex_line, int32_t bad_face) {
+  std::string text = "OFF\n" + std::to_string(n * n) + " " + std::to_string((n - 1) * (n - 1)) + " 0\n";
+  int64_t line = 2;
+  for (int32_t i = 0; i < n * n; ++i) {
+    if (i % 97 == 0) {
+      text += "# a comment between vertices\n\n";
+      line += 2;
+    }
+    ++line;
+    text += line == bad_vertex_line ? "0 zero 0\n" : std::to_string(i % n) + " " + std::to_string(i / n) + " 0" + (i % 5 ? "\n" : "\r\n");
+  }
+  for (int32_t y = 0; y + 1 < n; ++y)
+    for (int32_t x = 0; x + 1 < n; ++x) {
+      const int32_t f = y * (n - 1) + x, v = y * n + x;
+      text += "4 " + std::to_string(v) + " " + std::to_string(v + 1) + " " + std::to_string(f == bad_face ? n * n : v + n + 1) +
+              " " + std::to_string(v + n) + "\n";
+    }
+  return text;
+}
+
+TEST(IoOffLarge, AGridWithCommentsAndCrlfReadsWhole) {
+  const std::string text = large_off(300, -1, -1);
+  ASSERT_GT(text.size(), size_t(1) << 20);
+  const PolygonMesh mesh = read_mesh(test::write_file("grid_large.off", text));
+  ASSERT_EQ(mesh.num_vertices(), 300 * 300);
+  ASSERT_EQ(mesh.num_faces(), 299 * 299);
+  EXPECT_EQ(mesh.positions[301], (Vec3{1, 1, 0}));
+  const auto face = mesh.face(299 * 299 - 1);
+  EXPECT_EQ(std::vector<int32_t>(face.begin(), face.end()), (std::vector<int32_t>{89698, 89699, 89999, 89998}));
+}
+
+TEST(IoOffLarge, AnErrorIsReportedOnItsLineAndTheVerticesComeFirst) {
+  // Lines: 2 of header, 90000 vertex lines and 2 * ceil(90000 / 97) = 1856 comment and
+  // blank lines, so face f is on line 91858 + f + 1.
+  const std::filesystem::path faces = test::write_file("bad_face_large.off", large_off(300, -1, 5000));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(faces); }),
+            faces.string() + ":96859: vertex index 90000 out of range (0..89999)");
+  const std::filesystem::path both = test::write_file("bad_vertex_large.off", large_off(300, 70000, 5000));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(both); }), both.string() + ":70000: bad vertex coordinate 'zero'");
+}
 
 } // namespace
 } // namespace meander
