@@ -362,23 +362,35 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
       out.local[h] = std::min(out.local[h], d / 2);
     }
   };
-  // Neighbouring cells hold the segments within one cell size of those in this cell.
-  for (size_t e = 0; e < entries.size();) {
-    size_t end = e;
-    while (end < entries.size() && entries[end].first == entries[e].first) ++end;
-    const int64_t k = entries[e].first, x = k % nx, y = (k / nx) % ny, z = k / (nx * ny);
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) {
-          const int64_t key2 = key(x + dx, y + dy, z + dz);
-          if (x + dx < 0 || y + dy < 0 || z + dz < 0 || x + dx >= nx || y + dy >= ny || key2 < k) continue;
-          const auto range = std::equal_range(entries.begin(), entries.end(), std::pair<int64_t, int32_t>{key2, -1},
-                                              [](const auto& a, const auto& b) { return a.first < b.first; });
-          for (size_t i = e; i < end; ++i)
-            for (auto it = range.first; it != range.second; ++it)
-              if (key2 != k || it->second > entries[i].second) consider(size_t(entries[i].second), size_t(it->second));
-        }
-    e = end;
+  // Neighbouring cells hold the segments within one cell size of those in this cell. Each
+  // pair of cells is visited once, from the one with the smaller key: the cell itself, the
+  // next one in its row, and the three cells of each of the four rows (dy, dz) after it in
+  // key order. A row's first key rises with the cell's, so each row's cursor only moves
+  // forward through the sorted cells: linear, where a search per neighbour was not.
+  std::vector<size_t> cell_begin; // where each distinct key starts in entries, then the end
+  for (size_t e = 0; e < entries.size(); ++e)
+    if (e == 0 || entries[e].first != entries[e - 1].first) cell_begin.push_back(e);
+  const size_t cells = cell_begin.size();
+  cell_begin.push_back(entries.size());
+  auto cell_key = [&](size_t i) { return entries[cell_begin[i]].first; };
+  auto pairs = [&](size_t a, size_t b) {
+    for (size_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i)
+      for (size_t j = a == b ? i + 1 : cell_begin[b]; j < cell_begin[b + 1]; ++j)
+        consider(size_t(entries[i].second), size_t(entries[j].second));
+  };
+  constexpr std::array<std::pair<int, int>, 4> rows = {{{1, 0}, {-1, 1}, {0, 1}, {1, 1}}}; // (dy, dz)
+  std::array<size_t, rows.size()> cursor{};
+  for (size_t a = 0; a < cells; ++a) {
+    const int64_t k = cell_key(a), x = k % nx, y = (k / nx) % ny, z = k / (nx * ny);
+    pairs(a, a);
+    if (x + 1 < nx && a + 1 < cells && cell_key(a + 1) == k + 1) pairs(a, a + 1);
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const auto [dy, dz] = rows[r];
+      if (y + dy < 0 || y + dy >= ny) continue;
+      const int64_t lo = key(std::max<int64_t>(x - 1, 0), y + dy, z + dz), hi = key(std::min(x + 1, nx - 1), y + dy, z + dz);
+      while (cursor[r] < cells && cell_key(cursor[r]) < lo) ++cursor[r];
+      for (size_t b = cursor[r]; b < cells && cell_key(b) <= hi; ++b) pairs(a, b);
+    }
   }
   // The largest radius up to `limit` that no pair forbids: sweep the intervals by
   // decreasing lower end, dropping to the lower end of each one that covers the radius.
