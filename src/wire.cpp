@@ -522,6 +522,9 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     // slab turned by half a turn (both directions swap).
     connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
   }
+  // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
+  // better part of the time at 50k faces) only to copy it.
+  if (options.levels == 0) return control;
   return subdivide(control, {.levels = options.levels, .limit = true});
 }
 
