@@ -5,6 +5,8 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -200,6 +202,10 @@ private:
   }
 
   bool process_and_close_socket(socket_t socket) override {
+    // httplib writes an answer's headers and body apart: with Nagle's algorithm the body
+    // waits for the client's delayed ACK of the headers, 40 ms on every small answer.
+    const int on = 1;
+    setsockopt(socket, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
     ConnectionStream stream(socket, limits_);
     serve(stream);
     if (!stream.request_complete() && !stream.too_slow()) stream.drain(std::chrono::seconds(2));
