@@ -379,43 +379,56 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
     const bool open = !curves.open.empty() && curves.open[k];
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
+  const bool shaded = triangles > 0;
   const int64_t mesh_vertices = textured ? 3 * triangles : int64_t(mesh.positions.size());
   const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
   if (vertices > UINT32_MAX || triangles > UINT32_MAX || segments > UINT32_MAX)
     throw UsageError("result too large for the view (over 2^32 elements)");
-  std::string out;
-  out.reserve(20 + size_t(vertices) * 20 + size_t(triangles) * 12 + size_t(segments) * 8);
-  auto put = [&out](auto value) {
-    char bytes[sizeof(value)];
-    io::store_little_endian(bytes, value);
-    out.append(bytes, sizeof(value));
+  // The normals are computed here, not in the page: a JavaScript loop over millions of
+  // triangles took longer than making a preview (docs/benchmarks.md).
+  const std::vector<Vec3> normals = shaded ? vertex_normals(mesh) : std::vector<Vec3>{};
+  const size_t v = size_t(vertices), normal_bytes = shaded ? (3 * v + 3) / 4 * 4 : 0;
+  std::string out(44 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 12 * size_t(triangles) + 8 * size_t(segments), '\0');
+  char* at = out.data();
+  auto put = [&at](auto value) {
+    io::store_little_endian(at, value);
+    at += sizeof(value);
   };
-  out += "MNDR";
+  auto put_vec = [&put](Vec3 p) { put(p.x), put(p.y), put(p.z); };
+  std::memcpy(at, "MNDR", 4);
+  at += 4;
   put(uint32_t(vertices));
   put(uint32_t(triangles));
   put(uint32_t(segments));
-  put(uint32_t(textured));
+  put(uint32_t((textured ? 1 : 0) | (shaded ? 2 : 0)));
+  Box3 box = bounding_box(mesh.positions);
+  for (const Vec3& p : curves.points) box.extend(p);
+  put_vec(box.min), put_vec(box.max);
   // The fan of face f: corners (start, start + i, start + i + 1).
   auto for_each_fan_corner = [&mesh](auto visit) {
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
         for (int32_t c : {0, i, i + 1}) visit(mesh.face_start[f] + c);
   };
-  if (textured) {
-    for_each_fan_corner([&](int32_t c) {
-      const Vec3 p = mesh.positions[size_t(mesh.face_vertices[size_t(c)])];
-      put(p.x), put(p.y), put(p.z);
-    });
-  } else {
-    for (const Vec3& p : mesh.positions) put(p.x), put(p.y), put(p.z);
+  auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
+  if (textured) for_each_fan_corner([&](int32_t c) { put_vec(mesh.positions[corner_vertex(c)]); });
+  else for (const Vec3& p : mesh.positions) put_vec(p);
+  for (const Vec3& p : curves.points) put_vec(p);
+  if (shaded) {
+    char* const normals_end = at + normal_bytes;
+    auto put_normal = [&](Vec3 n) {
+      for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(std::lround(x * 127.0f)));
+    };
+    if (textured) for_each_fan_corner([&](int32_t c) { put_normal(normals[corner_vertex(c)]); });
+    else for (const Vec3& n : normals) put_normal(n);
+    at = normals_end; // the curve's points have no normal: zero, and the padding
   }
-  for (const Vec3& p : curves.points) put(p.x), put(p.y), put(p.z);
   if (textured) {
     for_each_fan_corner([&](int32_t c) { put(appearance.texcoords[size_t(c)].u), put(appearance.texcoords[size_t(c)].v); });
-    for (size_t k = 0; k < curves.points.size(); ++k) put(0.0f), put(0.0f);
-    for (uint32_t v = 0; v < uint32_t(mesh_vertices); ++v) put(v);
+    at += 8 * curves.points.size(); // the curve's points: (0, 0)
+    for (uint32_t i = 0; i < uint32_t(mesh_vertices); ++i) put(i);
   } else {
-    for_each_fan_corner([&](int32_t c) { put(uint32_t(mesh.face_vertices[size_t(c)])); });
+    for_each_fan_corner([&](int32_t c) { put(uint32_t(corner_vertex(c))); });
   }
   const uint32_t base = uint32_t(mesh_vertices);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
