@@ -346,9 +346,23 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
   }
   std::sort(entries.begin(), entries.end());
   std::vector<std::pair<double, double>> forbidden; // (d/2, arc/pi)
+  // Segments apart by more than the reach along one axis are apart: that test spares
+  // segment_distance for nearly every pair the grid brings (its cells are mostly far
+  // larger than the reach). The slack is far above segment_distance's float rounding, so
+  // exactly the pairs it would keep are kept.
+  const double slack = 1e-6 * std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                                        std::abs(box.max.y), std::abs(box.max.z)});
+  auto apart = [&](Vec3 a0, Vec3 a1, Vec3 b0, Vec3 b1, double gap) {
+    auto axis = [&](float a, float b, float c, float d) {
+      return double(std::min(c, d)) - std::max(a, b) > gap || double(std::min(a, b)) - std::max(c, d) > gap;
+    };
+    return axis(a0.x, a1.x, b0.x, b1.x) || axis(a0.y, a1.y, b0.y, b1.y) || axis(a0.z, a1.z, b0.z, b1.z);
+  };
   auto consider = [&](size_t g, size_t h) {
     if (g == h || next(g) == h || next(h) == g) return;
-    const double d = segment_distance(centre.points[g], centre.points[next(g)], centre.points[h], centre.points[next(h)]);
+    const Vec3 g0 = centre.points[g], g1 = centre.points[next(g)], h0 = centre.points[h], h1 = centre.points[next(h)];
+    if (apart(g0, g1, h0, h1, 2 * limit * reach + slack)) return;
+    const double d = segment_distance(g0, g1, h0, h1);
     if (d >= 2 * limit * reach) return;
     double between = INFINITY;
     if (curve_of[g] == curve_of[h]) {
