@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -275,7 +276,7 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& req
   return 0;
 }
 
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested) {
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested, const StudioResult* previous) {
   const auto start = std::chrono::steady_clock::now();
   const StudioParams params = effective(requested);
   StudioResult result{.params = params};
@@ -284,7 +285,10 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
     Duotone duotone = make_duotone(surface.repaired.mesh, surface.repaired.connectivity,
                                    {.quadrangulation = params.job.quadrangulation, .rule = params.rule,
                                     .tree = params.job.cycle.tree, .seed = params.job.cycle.seed});
-    TexturedMesh painted = duotone_surface(duotone, params.tiles);
+    const bool same_atlas = previous && previous->params.mode == StudioMode::duotone &&
+                            previous->params.tiles == params.tiles && !previous->appearance.materials.empty();
+    TexturedMesh painted = same_atlas ? duotone_surface(duotone, params.tiles, previous->appearance.materials[0].texture)
+                                      : duotone_surface(duotone, params.tiles);
     if (params.subdivide > 0) painted = subdivide(painted, {.levels = params.subdivide});
     result.curve.curves = separating_curves(duotone, params.tiles.style);
     result.curve_length = total_length(result.curve.curves);
@@ -342,6 +346,15 @@ std::string studio_stats_json(const StudioResult& result) {
   if (result.params.mode == StudioMode::duotone) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();
+    // What the atlas depends on: the page fetches texture.png again only when it changes.
+    const TileOptions& tiles = result.params.tiles;
+    std::string texture(to_string(tiles.style));
+    for (const Color8& c : tiles.colors) {
+      char hex[9];
+      std::snprintf(hex, sizeof hex, " #%02x%02x%02x", c[0], c[1], c[2]);
+      texture += hex;
+    }
+    stats["texture"] = texture + " " + std::to_string(tiles.texture_size);
   } else if (result.params.mode != StudioMode::curve) {
     stats["vertices"] = result.mesh.num_vertices();
     stats["faces"] = result.mesh.num_faces();

@@ -452,7 +452,8 @@ struct StudioServer::Impl {
                                 std::to_string(options.max_result) +
                                 ": lower samples, sides, levels, subdivide or texture_size");
         std::lock_guard guard(session->lock);
-        auto result = std::make_shared<const StudioResult>(make_studio_result(*session->surface, request.params));
+        auto result =
+            std::make_shared<const StudioResult>(make_studio_result(*session->surface, request.params, session->result.get()));
         session->result = result;
         json reply = json::parse(studio_stats_json(*result));
         reply["revision"] = ++revisions;

@@ -128,6 +128,29 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
   }
 }
 
+// The session's last result lends its atlas to the next duotone only for the same tile
+// options: what is drawn is always the atlas of the options asked for.
+TEST(Studio, DuotoneReusesTheAtlasOnlyForTheSameTiles) {
+  const StudioSurface surface = demo_surface();
+  StudioParams params{.mode = StudioMode::duotone, .tiles = {.texture_size = 64}};
+  const StudioResult first = make_studio_result(surface, params);
+  const auto atlas = [](const StudioResult& r) { return r.appearance.materials.at(0).texture.rgba; };
+  params.job.cycle.seed = 7;
+  const StudioResult reseeded = make_studio_result(surface, params, &first);
+  EXPECT_EQ(atlas(reseeded), atlas(first));
+  EXPECT_EQ(reseeded.mesh.face_vertices, make_studio_result(surface, params).mesh.face_vertices);
+  for (const TileOptions& tiles : {TileOptions{.style = TileStyle::dots, .texture_size = 64},
+                                   TileOptions{.colors = {Color8{255, 0, 0}, Color8{0, 0, 255}}, .texture_size = 64},
+                                   TileOptions{.texture_size = 128}}) {
+    params.tiles = tiles;
+    const StudioResult changed = make_studio_result(surface, params, &reseeded);
+    EXPECT_EQ(atlas(changed), duotone_atlas(tiles).rgba);
+    EXPECT_NE(atlas(changed), atlas(first));
+    EXPECT_NE(nlohmann::json::parse(studio_stats_json(changed))["texture"], nlohmann::json::parse(studio_stats_json(first))["texture"]);
+  }
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(first))["texture"], "truchet #f2be22 #1c3e80 64");
+}
+
 TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   const StudioSurface surface = demo_surface();
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {

@@ -111,7 +111,10 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 // (the live view's stats; none for a preview); or make_duotone, duotone_surface (subdivided if asked) and
 // separating_curves. Throws what those throw; TopologyError when no radius avoids a
 // self-intersection, as `meander wire`.
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params);
+// `previous`, the session's last result if any, lends its duotone atlas when the tile
+// options are the same (the atlas depends on them alone).
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params,
+                                const StudioResult* previous = nullptr);
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
 // for wires and ribbons vertices, faces, radius and (not for a preview, which has no

@@ -47,6 +47,7 @@ const surfaceMaterial = new THREE.MeshStandardMaterial({
 const resultMaterial = new THREE.MeshStandardMaterial({ color: 0xb8733a, roughness: 0.45, metalness: 0.3, side: THREE.DoubleSide });
 const curveMaterial = new THREE.LineBasicMaterial({ color: 0xbf1f14 });
 const duotoneMaterial = new THREE.MeshStandardMaterial({ roughness: 0.8, side: THREE.DoubleSide });
+let loadedTexture = null; // stats.texture of the atlas on duotoneMaterial
 let surfaceObject = null;
 let resultObject = null;
 
@@ -147,6 +148,7 @@ window.studio = {
       indices: resultObject.geometry.index.count,
       lines: resultObject.isLineSegments === true,
       textured: resultObject.geometry.attributes.uv !== undefined,
+      texture: loadedTexture,
       min: box.min.toArray(), max: box.max.toArray(),
     };
   },
@@ -272,13 +274,16 @@ async function make(preview = false) {
     lap('fetch');
     const { geometry, lines, textured } = parseView(buffer);
     lap('parse');
-    if (textured) {
+    // The atlas depends on the tile options alone (stats.texture names them): it is
+    // fetched only when they change, not on every seed or subdivision change.
+    if (textured && stats.texture !== loadedTexture) {
       const texture = await new THREE.TextureLoader().loadAsync(`/api/result/${state.session}/texture.png?r=${stats.revision}`);
       texture.colorSpace = THREE.SRGBColorSpace;
       texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
       duotoneMaterial.map?.dispose();
       duotoneMaterial.map = texture;
       duotoneMaterial.needsUpdate = true;
+      loadedTexture = stats.texture;
       lap('texture');
     }
     const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
