@@ -324,34 +324,47 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
   if (!(limit > 0)) return out;
 
   // Parts of the curve that come back near each other: every pair of segments closer
-  // than 2 * limit is found with a uniform grid of at least that cell size. A pair at distance d
+  // than 2 * limit (times `reach`) is found with a uniform grid. A pair at distance d
   // forbids the radii in (d/2, arc/pi): up to d/2 the tubes stay apart, and from arc/pi
   // the pair lies within one bend of the tube, which the folding bound already covers.
-  // Cells no smaller than the mean segment, so that a long segment spans few of them,
-  // and few enough per axis that a cell's number fits 63 bits.
+  // Each segment is entered in the cells its box meets grown by half that distance, so
+  // that two segments closer than it share the cell of the midpoint between their
+  // nearest points: only pairs within a cell are looked at. Cells no smaller than the
+  // mean segment, so that a long segment spans few of them, and few enough per axis that
+  // a cell's number fits 63 bits.
   const Box3 box = bounding_box(centre.points);
   const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
   const double cell = std::max({2 * limit * reach, sum_length / double(n), extent / double(1 << 20)});
+  // Far above the float rounding of segment_distance, so that a pair it puts within
+  // reach is found however close to the edge.
+  const double slack = 1e-6 * std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                                        std::abs(box.max.y), std::abs(box.max.z)});
+  const double grow = limit * reach + slack;
   auto cell_of = [&](double v, double lo) { return int64_t(std::floor((v - lo) / cell)); };
-  const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1;
+  const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1,
+                nz = cell_of(box.max.z, box.min.z) + 1;
   auto key = [&](int64_t x, int64_t y, int64_t z) { return (z * ny + y) * nx + x; };
+  // The cells [first, last] that coordinates in [lo - grow, hi + grow] meet, within the box.
+  auto cells_of = [&](float a, float b, float lo, int64_t count) {
+    return std::pair{std::max<int64_t>(0, cell_of(std::min(a, b) - grow, lo)),
+                     std::min(count - 1, cell_of(std::max(a, b) + grow, lo))};
+  };
   std::vector<std::pair<int64_t, int32_t>> entries;
   entries.reserve(n);
   for (size_t g = 0; g < n; ++g) {
     const Vec3 a = centre.points[g], b = centre.points[next(g)];
-    for (int64_t z = cell_of(std::min(a.z, b.z), box.min.z); z <= cell_of(std::max(a.z, b.z), box.min.z); ++z)
-      for (int64_t y = cell_of(std::min(a.y, b.y), box.min.y); y <= cell_of(std::max(a.y, b.y), box.min.y); ++y)
-        for (int64_t x = cell_of(std::min(a.x, b.x), box.min.x); x <= cell_of(std::max(a.x, b.x), box.min.x); ++x)
-          entries.push_back({key(x, y, z), int32_t(g)});
+    const auto [x0, x1] = cells_of(a.x, b.x, box.min.x, nx);
+    const auto [y0, y1] = cells_of(a.y, b.y, box.min.y, ny);
+    const auto [z0, z1] = cells_of(a.z, b.z, box.min.z, nz);
+    for (int64_t z = z0; z <= z1; ++z)
+      for (int64_t y = y0; y <= y1; ++y)
+        for (int64_t x = x0; x <= x1; ++x) entries.push_back({key(x, y, z), int32_t(g)});
   }
   std::sort(entries.begin(), entries.end());
   std::vector<std::pair<double, double>> forbidden; // (d/2, arc/pi)
   // Segments apart by more than the reach along one axis are apart: that test spares
-  // segment_distance for nearly every pair the grid brings (its cells are mostly far
-  // larger than the reach). The slack is far above segment_distance's float rounding, so
-  // exactly the pairs it would keep are kept.
-  const double slack = 1e-6 * std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
-                                        std::abs(box.max.y), std::abs(box.max.z)});
+  // segment_distance for most pairs a cell brings (cells are mostly far larger than the
+  // reach), and its slack keeps exactly the pairs segment_distance would keep.
   auto apart = [&](Vec3 a0, Vec3 a1, Vec3 b0, Vec3 b1, double gap) {
     auto axis = [&](float a, float b, float c, float d) {
       return double(std::min(c, d)) - std::max(a, b) > gap || double(std::min(a, b)) - std::max(c, d) > gap;
@@ -376,35 +389,12 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
       out.local[h] = std::min(out.local[h], d / 2);
     }
   };
-  // Neighbouring cells hold the segments within one cell size of those in this cell. Each
-  // pair of cells is visited once, from the one with the smaller key: the cell itself, the
-  // next one in its row, and the three cells of each of the four rows (dy, dz) after it in
-  // key order. A row's first key rises with the cell's, so each row's cursor only moves
-  // forward through the sorted cells: linear, where a search per neighbour was not.
-  std::vector<size_t> cell_begin; // where each distinct key starts in entries, then the end
-  for (size_t e = 0; e < entries.size(); ++e)
-    if (e == 0 || entries[e].first != entries[e - 1].first) cell_begin.push_back(e);
-  const size_t cells = cell_begin.size();
-  cell_begin.push_back(entries.size());
-  auto cell_key = [&](size_t i) { return entries[cell_begin[i]].first; };
-  auto pairs = [&](size_t a, size_t b) {
-    for (size_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i)
-      for (size_t j = a == b ? i + 1 : cell_begin[b]; j < cell_begin[b + 1]; ++j)
-        consider(size_t(entries[i].second), size_t(entries[j].second));
-  };
-  constexpr std::array<std::pair<int, int>, 4> rows = {{{1, 0}, {-1, 1}, {0, 1}, {1, 1}}}; // (dy, dz)
-  std::array<size_t, rows.size()> cursor{};
-  for (size_t a = 0; a < cells; ++a) {
-    const int64_t k = cell_key(a), x = k % nx, y = (k / nx) % ny, z = k / (nx * ny);
-    pairs(a, a);
-    if (x + 1 < nx && a + 1 < cells && cell_key(a + 1) == k + 1) pairs(a, a + 1);
-    for (size_t r = 0; r < rows.size(); ++r) {
-      const auto [dy, dz] = rows[r];
-      if (y + dy < 0 || y + dy >= ny) continue;
-      const int64_t lo = key(std::max<int64_t>(x - 1, 0), y + dy, z + dz), hi = key(std::min(x + 1, nx - 1), y + dy, z + dz);
-      while (cursor[r] < cells && cell_key(cursor[r]) < lo) ++cursor[r];
-      for (size_t b = cursor[r]; b < cells && cell_key(b) <= hi; ++b) pairs(a, b);
-    }
+  for (size_t e = 0; e < entries.size();) {
+    size_t end = e;
+    while (end < entries.size() && entries[end].first == entries[e].first) ++end;
+    for (size_t i = e; i < end; ++i)
+      for (size_t j = i + 1; j < end; ++j) consider(size_t(entries[i].second), size_t(entries[j].second));
+    e = end;
   }
   // The largest radius up to `limit` that no pair forbids: sweep the intervals by
   // decreasing lower end, dropping to the lower end of each one that covers the radius.
