@@ -235,19 +235,8 @@ StudioSurface demo_surface() {
 
 namespace {
 
-// What a preview actually makes (StudioParams::preview).
-StudioParams effective(StudioParams params) {
-  if (!params.preview) return params;
-  params.job.curve.samples = std::min(params.job.curve.samples, 2);
-  params.levels = 0;
-  params.subdivide = 0;
-  return params;
-}
-
-} // namespace
-
-int64_t studio_result_size(const StudioSurface& surface, const StudioParams& requested) {
-  const StudioParams params = effective(requested);
+// The elements make_studio_result would hold for these parameters as they are.
+int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   const PolygonMesh& mesh = surface.repaired.mesh;
   const int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size());
   const int32_t edges = surface.repaired.connectivity.num_edges();
@@ -276,9 +265,30 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& req
   return 0;
 }
 
+// A preview holds at most about this many elements when fewer curve samples can make it
+// so: what the page gets onto the screen in about a quarter of a second here (a variable
+// wire preview of 2.4M triangles, docs/benchmarks.md).
+constexpr int64_t preview_budget = 2'500'000;
+
+// What a preview actually makes (StudioParams::preview).
+StudioParams effective(const StudioSurface& surface, StudioParams params) {
+  if (!params.preview) return params;
+  params.job.curve.samples = std::min(params.job.curve.samples, 2);
+  params.levels = 0;
+  params.subdivide = 0;
+  while (params.job.curve.samples > 1 && result_size(surface, params) > preview_budget) --params.job.curve.samples;
+  return params;
+}
+
+} // namespace
+
+int64_t studio_result_size(const StudioSurface& surface, const StudioParams& requested) {
+  return result_size(surface, effective(surface, requested));
+}
+
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested, const StudioResult* previous) {
   const auto start = std::chrono::steady_clock::now();
-  const StudioParams params = effective(requested);
+  const StudioParams params = effective(surface, requested);
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
   if (mode == StudioMode::duotone) {

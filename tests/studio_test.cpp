@@ -173,6 +173,27 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   EXPECT_EQ(studio_result_size(surface, many), 250 * studio_result_size(surface, {.mode = StudioMode::curve}));
 }
 
+// A preview that 2 curve samples would make larger than its budget (2.5M elements) takes
+// 1: a 64-sided wire on a 4,000-face sphere, 3.1M triangles at 2 samples.
+TEST(Studio, APreviewOverItsBudgetTakesFewerSamples) {
+  StudioSurface surface{.name = "sphere.obj"};
+  surface.repaired = repair(make_shape("sphere", 4000), surface.name);
+  StudioParams wide{.mode = StudioMode::constant_wire, .sides = 64};
+  StudioParams one = wide;
+  one.job.curve.samples = 1;
+  StudioParams two = wide;
+  two.job.curve.samples = 2;
+  ASSERT_GT(studio_result_size(surface, two), 2'500'000);
+  wide.preview = true;
+  EXPECT_EQ(studio_result_size(surface, wide), studio_result_size(surface, one));
+  const StudioResult quick = make_studio_result(surface, wide);
+  EXPECT_EQ(quick.params.job.curve.samples, 1);
+  EXPECT_EQ(quick.triangles, studio_result_size(surface, one));
+  // Within the budget a preview keeps its 2 samples.
+  StudioParams narrow{.mode = StudioMode::constant_wire, .preview = true};
+  EXPECT_EQ(studio_result_size(surface, narrow), studio_result_size(surface, {.mode = StudioMode::constant_wire}) / 2);
+}
+
 TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   const StudioSurface surface = demo_surface();
   StudioParams full{.mode = StudioMode::variable_wire, .levels = 2};
