@@ -395,23 +395,28 @@ StudioFile parse_studio_file(std::string_view name) {
 
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
   const bool textured = !appearance.texcoords.empty();
-  int64_t triangles = 0, segments = 0;
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += std::max(0, mesh.face_size(f) - 2);
+  // Quads go as quads (the page splits them), a third fewer indices than two triangles.
+  int64_t quads = 0, triangles = 0, segments = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) == 4) ++quads;
+    else triangles += std::max(0, mesh.face_size(f) - 2);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t n = curves.start[k + 1] - curves.start[k];
     const bool open = !curves.open.empty() && curves.open[k];
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
-  const bool shaded = triangles > 0;
-  const int64_t mesh_vertices = textured ? 3 * triangles : int64_t(mesh.positions.size());
+  const bool shaded = quads + triangles > 0;
+  const int64_t mesh_vertices = textured ? int64_t(mesh.face_vertices.size()) : int64_t(mesh.positions.size());
   const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
-  if (vertices > UINT32_MAX || triangles > UINT32_MAX || segments > UINT32_MAX)
+  if (vertices > UINT32_MAX || 4 * quads + 3 * triangles > UINT32_MAX || segments > UINT32_MAX)
     throw UsageError("result too large for the view (over 2^32 elements)");
   // The normals are computed here, not in the page: a JavaScript loop over millions of
   // triangles took longer than making a preview (docs/benchmarks.md).
   const std::vector<Vec3> normals = shaded ? vertex_normals(mesh) : std::vector<Vec3>{};
   const size_t v = size_t(vertices), normal_bytes = shaded ? (3 * v + 3) / 4 * 4 : 0;
-  std::string out(44 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 12 * size_t(triangles) + 8 * size_t(segments), '\0');
+  std::string out(48 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 16 * size_t(quads) + 12 * size_t(triangles) +
+                      8 * size_t(segments),
+                  '\0');
   char* at = out.data();
   auto put = [&at](auto value) {
     io::store_little_endian(at, value);
@@ -421,20 +426,16 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   std::memcpy(at, "MNDR", 4);
   at += 4;
   put(uint32_t(vertices));
+  put(uint32_t(quads));
   put(uint32_t(triangles));
   put(uint32_t(segments));
   put(uint32_t((textured ? 1 : 0) | (shaded ? 2 : 0)));
   Box3 box = bounding_box(mesh.positions);
   for (const Vec3& p : curves.points) box.extend(p);
   put_vec(box.min), put_vec(box.max);
-  // The fan of face f: corners (start, start + i, start + i + 1).
-  auto for_each_fan_corner = [&mesh](auto visit) {
-    for (int32_t f = 0; f < mesh.num_faces(); ++f)
-      for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
-        for (int32_t c : {0, i, i + 1}) visit(mesh.face_start[f] + c);
-  };
+  // With texture coordinates, which belong to the corners, every corner is a vertex.
   auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
-  if (textured) for_each_fan_corner([&](int32_t c) { put_vec(mesh.positions[corner_vertex(c)]); });
+  if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_vec(mesh.positions[corner_vertex(c)]);
   else for (const Vec3& p : mesh.positions) put_vec(p);
   for (const Vec3& p : curves.points) put_vec(p);
   if (shaded) {
@@ -442,17 +443,24 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
     auto put_normal = [&](Vec3 n) {
       for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(std::lround(x * 127.0f)));
     };
-    if (textured) for_each_fan_corner([&](int32_t c) { put_normal(normals[corner_vertex(c)]); });
+    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_normal(normals[corner_vertex(c)]);
     else for (const Vec3& n : normals) put_normal(n);
     at = normals_end; // the curve's points have no normal: zero, and the padding
   }
   if (textured) {
-    for_each_fan_corner([&](int32_t c) { put(appearance.texcoords[size_t(c)].u), put(appearance.texcoords[size_t(c)].v); });
+    for (const TexCoord& t : appearance.texcoords) put(t.u), put(t.v);
     at += 8 * curves.points.size(); // the curve's points: (0, 0)
-    for (uint32_t i = 0; i < uint32_t(mesh_vertices); ++i) put(i);
-  } else {
-    for_each_fan_corner([&](int32_t c) { put(uint32_t(corner_vertex(c))); });
   }
+  // A corner's vertex number in the view.
+  auto index = [&](int32_t c) { return uint32_t(textured ? size_t(c) : corner_vertex(c)); };
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) == 4)
+      for (int32_t i = 0; i < 4; ++i) put(index(mesh.face_start[f] + i));
+  // Other polygons fanned: corners (start, start + i, start + i + 1).
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) != 4)
+      for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
+        for (int32_t c : {0, i, i + 1}) put(index(mesh.face_start[f] + c));
   const uint32_t base = uint32_t(mesh_vertices);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t begin = curves.start[k], end = curves.start[k + 1];

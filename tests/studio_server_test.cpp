@@ -106,23 +106,25 @@ TEST_F(StudioServerTest, APreviewDownloadsLikeAFullResultUnderItsOwnName) {
 // array: the sizes add up, the indices are in range, a mesh has unit normals and no loop
 // in the page has to compute anything.
 struct ViewLayout {
-  uint32_t vertices = 0, triangles = 0, segments = 0, flags = 0;
+  uint32_t vertices = 0, quads = 0, triangles = 0, segments = 0, flags = 0;
 };
 
 ViewLayout check_view(const std::string& bytes, const std::string& what) {
   ViewLayout view;
-  EXPECT_GE(bytes.size(), 44u) << what;
-  if (bytes.size() < 44) return view;
+  EXPECT_GE(bytes.size(), 48u) << what;
+  if (bytes.size() < 48) return view;
   EXPECT_EQ(bytes.substr(0, 4), "MNDR") << what;
-  std::memcpy(&view, bytes.data() + 4, 16);
+  std::memcpy(&view, bytes.data() + 4, 20);
   const size_t v = view.vertices, normal_bytes = view.flags & 2 ? (3 * v + 3) / 4 * 4 : 0;
-  const size_t positions = 44, normals = positions + 12 * v, uvs = normals + normal_bytes;
-  const size_t triangles = uvs + (view.flags & 1 ? 8 * v : 0), segments = triangles + 12 * size_t(view.triangles);
-  EXPECT_EQ(bytes.size(), segments + 8 * size_t(view.segments)) << what;
-  if (bytes.size() != segments + 8 * size_t(view.segments)) return view;
-  EXPECT_EQ(view.flags & 2 ? 1 : 0, view.triangles > 0 ? 1 : 0) << what << ": a mesh comes with its normals";
+  const size_t positions = 48, normals = positions + 12 * v, uvs = normals + normal_bytes;
+  const size_t indices = uvs + (view.flags & 1 ? 8 * v : 0);
+  const size_t end = indices + 16 * size_t(view.quads) + 12 * size_t(view.triangles) + 8 * size_t(view.segments);
+  EXPECT_EQ(bytes.size(), end) << what;
+  if (bytes.size() != end) return view;
+  const bool faces = view.quads + view.triangles > 0;
+  EXPECT_EQ(view.flags & 2 ? 1 : 0, faces ? 1 : 0) << what << ": a mesh comes with its normals";
   float box[6];
-  std::memcpy(box, bytes.data() + 20, sizeof box);
+  std::memcpy(box, bytes.data() + 24, sizeof box);
   for (size_t i = 0; i < v; ++i) {
     float p[3];
     std::memcpy(p, bytes.data() + positions + 12 * i, sizeof p);
@@ -132,7 +134,7 @@ ViewLayout check_view(const std::string& bytes, const std::string& what) {
         return view;
       }
   }
-  for (size_t i = 0; view.triangles > 0 && i < v; ++i) {
+  for (size_t i = 0; faces && i < v; ++i) {
     const auto* n = reinterpret_cast<const int8_t*>(bytes.data() + normals + 3 * i);
     const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     if (std::abs(length - 127) > 2) {
@@ -140,9 +142,9 @@ ViewLayout check_view(const std::string& bytes, const std::string& what) {
       return view;
     }
   }
-  for (size_t i = 0; i < 3 * size_t(view.triangles) + 2 * size_t(view.segments); ++i) {
+  for (size_t i = 0; i < 4 * size_t(view.quads) + 3 * size_t(view.triangles) + 2 * size_t(view.segments); ++i) {
     uint32_t index = 0;
-    std::memcpy(&index, bytes.data() + triangles + 4 * i, 4);
+    std::memcpy(&index, bytes.data() + indices + 4 * i, 4);
     if (index >= v) {
       ADD_FAILURE() << what << ": index " << i << " is " << index << ", past the " << v << " vertices";
       return view;
@@ -159,7 +161,9 @@ TEST_F(StudioServerTest, TheViewOfEveryPreviewIsWhatThePageReads) {
   auto c = client();
   const auto surface = c.Get("/api/result/" + session + "/surface.bin");
   ASSERT_TRUE(surface);
-  EXPECT_EQ(check_view(surface->body, "surface.bin").triangles, 1600u); // the pretzel's triangles
+  const ViewLayout drawn = check_view(surface->body, "surface.bin");
+  EXPECT_EQ(drawn.triangles, 1600u); // the pretzel's triangles
+  EXPECT_EQ(drawn.quads, 0u);
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"})
     for (const bool preview : {true, false}) {
       const std::string what = std::string(mode) + (preview ? " preview" : " full");
@@ -174,11 +178,12 @@ TEST_F(StudioServerTest, TheViewOfEveryPreviewIsWhatThePageReads) {
       ASSERT_EQ(bytes->status, 200) << what;
       const ViewLayout view = check_view(bytes->body, what);
       if (std::string(mode) == "curve") {
-        EXPECT_EQ(view.triangles, 0u) << what;
+        EXPECT_EQ(view.quads + view.triangles, 0u) << what;
         EXPECT_EQ(view.segments, stats["curve_points"].get<uint32_t>()) << what << ": one closed curve";
         EXPECT_EQ(view.flags, 0u) << what;
       } else {
-        EXPECT_EQ(view.triangles, stats["triangles"].get<uint32_t>()) << what;
+        EXPECT_EQ(2 * view.quads + view.triangles, stats["triangles"].get<uint32_t>()) << what;
+        EXPECT_GT(view.quads, 0u) << what << ": wires, ribbons and duotone are made of quads";
         EXPECT_EQ(view.segments, 0u) << what;
         EXPECT_EQ(view.flags, std::string(mode) == "duotone" ? 3u : 2u) << what;
       }

@@ -234,52 +234,55 @@ TEST(Studio, UploadsOverTheFaceLimitAreRefused) {
   }
 }
 
-TEST(Studio, ViewBytesHoldTheTrianglesAndSegments) {
-  PolygonMesh quad;
-  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  quad.add_face({0, 1, 2, 3});
+TEST(Studio, ViewBytesHoldTheFacesAndSegments) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
+  mesh.add_face({0, 1, 2, 3});       // a quad goes as a quad
+  mesh.add_face({1, 4, 5});          // a triangle as a triangle
+  mesh.add_face({2, 1, 5, 6, 7});    // a pentagon fanned into 3 triangles
   Polylines loop;
   loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 2}};
   loop.start = {0, 3};
-  const std::string bytes = studio_view_bytes(quad, loop);
-  // Header, 7 positions, 7 normals of 3 bytes padded to 24, 2 triangles, 3 segments.
-  ASSERT_EQ(bytes.size(), 44u + 7 * 12 + 24 + 2 * 12 + 3 * 8);
+  const std::string bytes = studio_view_bytes(mesh, loop);
+  // Header, 11 positions, 11 normals of 3 bytes padded to 36, 1 quad, 4 triangles, 3 segments.
+  ASSERT_EQ(bytes.size(), 48u + 11 * 12 + 36 + 16 + 4 * 12 + 3 * 8);
   EXPECT_EQ(bytes.substr(0, 4), "MNDR");
-  uint32_t counts[4];
-  std::memcpy(counts, bytes.data() + 4, 16);
-  EXPECT_EQ(counts[0], 7u);
-  EXPECT_EQ(counts[1], 2u);
-  EXPECT_EQ(counts[2], 3u); // a closed loop of 3 points has 3 segments
-  EXPECT_EQ(counts[3], 2u); // normals, no texture coordinates
+  uint32_t counts[5];
+  std::memcpy(counts, bytes.data() + 4, sizeof counts);
+  EXPECT_EQ(std::vector<uint32_t>(counts, counts + 5), (std::vector<uint32_t>{11, 1, 4, 3, 2})); // normals, no texture
   float box[6];
-  std::memcpy(box, bytes.data() + 20, sizeof box);
-  EXPECT_EQ(std::vector<float>(box, box + 6), (std::vector<float>{0, 0, 0, 1, 1, 2})); // the curve's points too
-  // The square faces +z: every corner's normal is (0, 0, 127); the curve's points have none.
-  const char* normals = bytes.data() + 44 + 7 * 12;
-  for (int v = 0; v < 7; ++v)
-    EXPECT_EQ(std::vector<int>(normals + 3 * v, normals + 3 * v + 3), (std::vector<int>{0, 0, v < 4 ? 127 : 0})) << v;
-  uint32_t triangles[6];
-  std::memcpy(triangles, bytes.data() + 44 + 7 * 12 + 24, sizeof triangles);
-  EXPECT_EQ(std::vector<uint32_t>(triangles, triangles + 6), (std::vector<uint32_t>{0, 1, 2, 0, 2, 3})); // fanned
+  std::memcpy(box, bytes.data() + 24, sizeof box);
+  EXPECT_EQ(std::vector<float>(box, box + 6), (std::vector<float>{0, 0, 0, 2, 2, 2})); // the curve's points too
+  // The faces all face +z: every mesh vertex's normal is (0, 0, 127); the curve's points have none.
+  const char* normals = bytes.data() + 48 + 11 * 12;
+  for (int v = 0; v < 11; ++v)
+    EXPECT_EQ(std::vector<int>(normals + 3 * v, normals + 3 * v + 3), (std::vector<int>{0, 0, v < 8 ? 127 : 0})) << v;
+  uint32_t indices[16];
+  std::memcpy(indices, bytes.data() + 48 + 11 * 12 + 36, sizeof indices);
+  EXPECT_EQ(std::vector<uint32_t>(indices, indices + 16),
+            (std::vector<uint32_t>{0, 1, 2, 3, /* triangle */ 1, 4, 5, /* fan */ 2, 1, 5, 2, 5, 6, 2, 6, 7}));
   uint32_t last_segment[2];
   std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
-  EXPECT_EQ(last_segment[0], 6u); // 4 mesh vertices first, then the curve's: closes 6 -> 4
-  EXPECT_EQ(last_segment[1], 4u);
+  EXPECT_EQ(last_segment[0], 10u); // 8 mesh vertices first, then the curve's: closes 10 -> 8
+  EXPECT_EQ(last_segment[1], 8u);
   // A curve alone has neither normals nor texture coordinates.
   const std::string curve = studio_view_bytes({}, loop);
-  ASSERT_EQ(curve.size(), 44u + 3 * 12 + 3 * 8);
-  std::memcpy(counts, curve.data() + 4, 16);
-  EXPECT_EQ(counts[3], 0u);
-  // With texture coordinates every triangle corner is a vertex of its own, its (u, v) after the normals.
+  ASSERT_EQ(curve.size(), 48u + 3 * 12 + 3 * 8);
+  std::memcpy(counts, curve.data() + 4, sizeof counts);
+  EXPECT_EQ(counts[4], 0u);
+  // With texture coordinates every face corner is a vertex of its own, its (u, v) after the normals.
+  PolygonMesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.add_face({0, 1, 2, 3});
   Appearance appearance{.materials = {{.name = "m"}}, .texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
   const std::string textured = studio_view_bytes(quad, {}, appearance);
-  ASSERT_EQ(textured.size(), 44u + 6 * 12 + 20 + 6 * 8 + 2 * 12);
-  std::memcpy(counts, textured.data() + 4, 16);
-  EXPECT_EQ(counts[0], 6u);
-  EXPECT_EQ(counts[3], 3u);
-  float uv[12];
-  std::memcpy(uv, textured.data() + 44 + 6 * 12 + 20, sizeof uv);
-  EXPECT_EQ(uv[4], 1.0f); // corner 2 of the first triangle (0, 1, 2) is (1, 1)
+  ASSERT_EQ(textured.size(), 48u + 4 * 12 + 12 + 4 * 8 + 16);
+  std::memcpy(counts, textured.data() + 4, sizeof counts);
+  EXPECT_EQ(counts[0], 4u);
+  EXPECT_EQ(counts[4], 3u);
+  float uv[8];
+  std::memcpy(uv, textured.data() + 48 + 4 * 12 + 12, sizeof uv);
+  EXPECT_EQ(uv[4], 1.0f); // corner 2 is (1, 1)
   EXPECT_EQ(uv[5], 1.0f);
 }
 

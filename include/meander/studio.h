@@ -136,15 +136,17 @@ enum class StudioFile {
 StudioFile parse_studio_file(std::string_view name);
 
 // Geometry for the page's three.js view, little-endian: "MNDR", uint32 vertex count V,
-// triangle count T, segment count S and flags F (bit 0: texture coordinates, bit 1:
-// normals), the bounding box of the positions as 6 float32 (min x, y, z, max x, y, z);
-// then V*3 float32 positions; if F has bit 1 (there are triangles), V*3 int8 unit
-// normals times 127 (area-weighted, vertex_normals; zero for the curve's points) padded
-// with zeros to a multiple of 4 bytes; if F has bit 0, V*2 float32 texture coordinates;
-// T*3 uint32 vertex indices (polygons fanned), S*2 uint32 indices of line segments
-// (closed curves). With texture coordinates (an appearance that has them) every triangle
-// corner is a vertex of its own, as texture seams need, with its vertex's normal. The
-// page draws the arrays as they are, with no loop over the vertices.
+// quad count Q, triangle count T, segment count S and flags F (bit 0: texture
+// coordinates, bit 1: normals), the bounding box of the positions as 6 float32 (min x,
+// y, z, max x, y, z); then V*3 float32 positions; if F has bit 1 (there are faces), V*3
+// int8 unit normals times 127 (area-weighted, vertex_normals; zero for the curve's
+// points) padded with zeros to a multiple of 4 bytes; if F has bit 0, V*2 float32
+// texture coordinates; Q*4 uint32 vertex indices of the quads (drawn as the triangles
+// 0-1-2 and 0-2-3), T*3 uint32 vertex indices of the triangles (the other polygons
+// fanned), S*2 uint32 indices of line segments (closed curves). With texture
+// coordinates (an appearance that has them) every face corner is a vertex of its own,
+// as texture seams need, with its vertex's normal. The page splits the quads and
+// otherwise draws the arrays as they are, with no loop over the vertices.
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance = {});
 
 struct StudioDownload {

@@ -61,20 +61,19 @@ function resize() {
 new ResizeObserver(resize).observe(container);
 resize();
 
-// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, triangle and
-// segment counts, flags (1: texture coordinates, 2: normals) and the bounding box, then
-// float32 positions, [int8 normals, padded to 4 bytes], [float32 texture coordinates],
-// uint32 triangles, uint32 segments. Every array is used where it lies in the buffer:
-// no loop over the vertices here (computing normals in the page took longer than making a
-// preview on the server).
+// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, quad,
+// triangle and segment counts, flags (1: texture coordinates, 2: normals) and the
+// bounding box, then float32 positions, [int8 normals, padded to 4 bytes], [float32
+// texture coordinates], uint32 quads, uint32 triangles, uint32 segments. Every array but
+// the quads is used where it lies in the buffer: no loop over the vertices here
+// (computing normals in the page took longer than making a preview on the server).
 function parseView(buffer) {
-  const header = new DataView(buffer, 0, 44);
+  const header = new DataView(buffer, 0, 48);
   if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MNDR') throw new Error('not a Meander view');
-  const v = header.getUint32(4, true), t = header.getUint32(8, true), s = header.getUint32(12, true);
-  const flags = header.getUint32(16, true);
+  const [v, q, t, s, flags] = [4, 8, 12, 16, 20].map((at) => header.getUint32(at, true));
   const textured = (flags & 1) !== 0, shaded = (flags & 2) !== 0;
-  const box = new Float32Array(buffer, 20, 6);
-  let offset = 44;
+  const box = new Float32Array(buffer, 24, 6);
+  let offset = 48;
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 3), 3));
   offset += v * 12;
@@ -86,9 +85,21 @@ function parseView(buffer) {
     geometry.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 2), 2));
     offset += v * 8;
   }
-  const lines = t === 0;
-  geometry.setIndex(new THREE.BufferAttribute(lines ? new Uint32Array(buffer, offset + t * 12, s * 2)
-    : new Uint32Array(buffer, offset, t * 3), 1));
+  const quads = new Uint32Array(buffer, offset, q * 4);
+  const triangles = new Uint32Array(buffer, offset + q * 16, t * 3);
+  const lines = q + t === 0;
+  let index = triangles;
+  if (q > 0) {
+    // Each quad as its two triangles, the way the server fans a polygon.
+    index = new Uint32Array(q * 6 + t * 3);
+    for (let i = 0, j = 0; i < q * 4; i += 4, j += 6) {
+      const a = quads[i], b = quads[i + 1], c = quads[i + 2], d = quads[i + 3];
+      index[j] = a; index[j + 1] = b; index[j + 2] = c;
+      index[j + 3] = a; index[j + 4] = c; index[j + 5] = d;
+    }
+    index.set(triangles, q * 6);
+  }
+  geometry.setIndex(new THREE.BufferAttribute(lines ? new Uint32Array(buffer, offset + q * 16 + t * 12, s * 2) : index, 1));
   // The bounds three.js would otherwise compute with a loop over the positions (the
   // sphere when it first culls): the box's circumscribed sphere encloses them too.
   geometry.boundingBox = new THREE.Box3(new THREE.Vector3(box[0], box[1], box[2]), new THREE.Vector3(box[3], box[4], box[5]));
