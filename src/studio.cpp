@@ -440,8 +440,8 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   for (const Vec3& p : curves.points) put_vec(p);
   if (shaded) {
     char* const normals_end = at + normal_bytes;
-    auto put_normal = [&](Vec3 n) {
-      for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(std::lround(x * 127.0f)));
+    auto put_normal = [&](Vec3 n) { // rounded half away from zero, without a libm call per component
+      for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(x * 127.0f + (x < 0 ? -0.5f : 0.5f)));
     };
     if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_normal(normals[corner_vertex(c)]);
     else for (const Vec3& n : normals) put_normal(n);

@@ -27,11 +27,12 @@ struct ServeArgs {
 // more back to the kernel when they are freed, and on this kind of virtual machine a
 // fresh page costs more than the work on it (docs/benchmarks.md, huge pages): a third of
 // a preview's time went to zeroing pages. The server keeps up to 1 GiB of freed memory
-// in one arena instead, so that the next update, on any thread, reuses it. Blocks over
-// glibc's largest threshold (32 MiB) are still mapped afresh.
+// in one arena instead, so that the next update, on any thread, reuses it; no block is
+// mapped on its own (which glibc does past 32 MiB whatever the threshold), so that a
+// 40 MB view is reused too.
 void keep_freed_memory() {
   mallopt(M_ARENA_MAX, 1);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 }
 
