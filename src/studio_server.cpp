@@ -473,7 +473,10 @@ struct StudioServer::Impl {
         }
         if (!result && file != StudioFile::surface)
           return send_error(res, 409, "nothing made yet in this session: POST /api/make first");
-        StudioDownload download = studio_download(*session->surface, result ? *result : StudioResult{}, file, scratch,
+        // Both branches lvalues: `result ? *result : StudioResult{}` copied the whole result
+        // (mesh, curve, quads) on every download, the view's included.
+        const StudioResult nothing;
+        StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file, scratch,
                                                   "download_" + std::to_string(++downloads));
         res.set_header("Content-Disposition", "attachment; filename=\"" + download.filename + "\"");
         // What set_content does, without its copy of a view of tens of megabytes.
