@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace meander {
 
@@ -386,7 +387,14 @@ Texture duotone_atlas(const TileOptions& options) {
 }
 
 TexturedMesh duotone_surface(const Duotone& d, const TileOptions& options) {
+  return duotone_surface(d, options, duotone_atlas(options));
+}
+
+TexturedMesh duotone_surface(const Duotone& d, const TileOptions& options, Texture atlas) {
   const AtlasLayout layout = atlas_layout(options.texture_size);
+  if (atlas.width != layout.width() || atlas.height != layout.tile)
+    throw UsageError("duotone atlas of " + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+                     " pixels for a texture size of " + std::to_string(options.texture_size));
   const QuadMesh& m = d.quads;
   TexturedMesh out;
   out.mesh.positions = m.positions;
@@ -407,7 +415,7 @@ TexturedMesh duotone_surface(const Duotone& d, const TileOptions& options) {
     }
     out.mesh.face_start.push_back(int32_t(out.mesh.face_vertices.size()));
   }
-  out.appearance.materials.push_back({.name = "duotone", .base_color = {1, 1, 1}, .texture = duotone_atlas(options)});
+  out.appearance.materials.push_back({.name = "duotone", .base_color = {1, 1, 1}, .texture = std::move(atlas)});
   return out;
 }
 

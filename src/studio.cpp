@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -234,19 +235,8 @@ StudioSurface demo_surface() {
 
 namespace {
 
-// What a preview actually makes (StudioParams::preview).
-StudioParams effective(StudioParams params) {
-  if (!params.preview) return params;
-  params.job.curve.samples = std::min(params.job.curve.samples, 2);
-  params.levels = 0;
-  params.subdivide = 0;
-  return params;
-}
-
-} // namespace
-
-int64_t studio_result_size(const StudioSurface& surface, const StudioParams& requested) {
-  const StudioParams params = effective(requested);
+// The elements make_studio_result would hold for these parameters as they are.
+int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   const PolygonMesh& mesh = surface.repaired.mesh;
   const int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size());
   const int32_t edges = surface.repaired.connectivity.num_edges();
@@ -275,16 +265,40 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& req
   return 0;
 }
 
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested) {
+// A preview holds at most about this many elements when fewer curve samples can make it
+// so: what the page gets onto the screen in about a quarter of a second here (a variable
+// wire preview of 2.4M triangles, docs/benchmarks.md).
+constexpr int64_t preview_budget = 2'500'000;
+
+// What a preview actually makes (StudioParams::preview).
+StudioParams effective(const StudioSurface& surface, StudioParams params) {
+  if (!params.preview) return params;
+  params.job.curve.samples = std::min(params.job.curve.samples, 2);
+  params.levels = 0;
+  params.subdivide = 0;
+  while (params.job.curve.samples > 1 && result_size(surface, params) > preview_budget) --params.job.curve.samples;
+  return params;
+}
+
+} // namespace
+
+int64_t studio_result_size(const StudioSurface& surface, const StudioParams& requested) {
+  return result_size(surface, effective(surface, requested));
+}
+
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested, const StudioResult* previous) {
   const auto start = std::chrono::steady_clock::now();
-  const StudioParams params = effective(requested);
+  const StudioParams params = effective(surface, requested);
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
   if (mode == StudioMode::duotone) {
     Duotone duotone = make_duotone(surface.repaired.mesh, surface.repaired.connectivity,
                                    {.quadrangulation = params.job.quadrangulation, .rule = params.rule,
                                     .tree = params.job.cycle.tree, .seed = params.job.cycle.seed});
-    TexturedMesh painted = duotone_surface(duotone, params.tiles);
+    const bool same_atlas = previous && previous->params.mode == StudioMode::duotone &&
+                            previous->params.tiles == params.tiles && !previous->appearance.materials.empty();
+    TexturedMesh painted = same_atlas ? duotone_surface(duotone, params.tiles, previous->appearance.materials[0].texture)
+                                      : duotone_surface(duotone, params.tiles);
     if (params.subdivide > 0) painted = subdivide(painted, {.levels = params.subdivide});
     result.curve.curves = separating_curves(duotone, params.tiles.style);
     result.curve_length = total_length(result.curve.curves);
@@ -342,6 +356,15 @@ std::string studio_stats_json(const StudioResult& result) {
   if (result.params.mode == StudioMode::duotone) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();
+    // What the atlas depends on: the page fetches texture.png again only when it changes.
+    const TileOptions& tiles = result.params.tiles;
+    std::string texture(to_string(tiles.style));
+    for (const Color8& c : tiles.colors) {
+      char hex[9];
+      std::snprintf(hex, sizeof hex, " #%02x%02x%02x", c[0], c[1], c[2]);
+      texture += hex;
+    }
+    stats["texture"] = texture + " " + std::to_string(tiles.texture_size);
   } else if (result.params.mode != StudioMode::curve) {
     stats["vertices"] = result.mesh.num_vertices();
     stats["faces"] = result.mesh.num_faces();
@@ -372,51 +395,72 @@ StudioFile parse_studio_file(std::string_view name) {
 
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
   const bool textured = !appearance.texcoords.empty();
-  int64_t triangles = 0, segments = 0;
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += std::max(0, mesh.face_size(f) - 2);
+  // Quads go as quads (the page splits them), a third fewer indices than two triangles.
+  int64_t quads = 0, triangles = 0, segments = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) == 4) ++quads;
+    else triangles += std::max(0, mesh.face_size(f) - 2);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t n = curves.start[k + 1] - curves.start[k];
     const bool open = !curves.open.empty() && curves.open[k];
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
-  const int64_t mesh_vertices = textured ? 3 * triangles : int64_t(mesh.positions.size());
+  const bool shaded = quads + triangles > 0;
+  const int64_t mesh_vertices = textured ? int64_t(mesh.face_vertices.size()) : int64_t(mesh.positions.size());
   const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
-  if (vertices > UINT32_MAX || triangles > UINT32_MAX || segments > UINT32_MAX)
+  if (vertices > UINT32_MAX || 4 * quads + 3 * triangles > UINT32_MAX || segments > UINT32_MAX)
     throw UsageError("result too large for the view (over 2^32 elements)");
-  std::string out;
-  out.reserve(20 + size_t(vertices) * 20 + size_t(triangles) * 12 + size_t(segments) * 8);
-  auto put = [&out](auto value) {
-    char bytes[sizeof(value)];
-    io::store_little_endian(bytes, value);
-    out.append(bytes, sizeof(value));
+  // The normals are computed here, not in the page: a JavaScript loop over millions of
+  // triangles took longer than making a preview (docs/benchmarks.md).
+  const std::vector<Vec3> normals = shaded ? vertex_normals(mesh) : std::vector<Vec3>{};
+  const size_t v = size_t(vertices), normal_bytes = shaded ? (3 * v + 3) / 4 * 4 : 0;
+  std::string out(48 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 16 * size_t(quads) + 12 * size_t(triangles) +
+                      8 * size_t(segments),
+                  '\0');
+  char* at = out.data();
+  auto put = [&at](auto value) {
+    io::store_little_endian(at, value);
+    at += sizeof(value);
   };
-  out += "MNDR";
+  auto put_vec = [&put](Vec3 p) { put(p.x), put(p.y), put(p.z); };
+  std::memcpy(at, "MNDR", 4);
+  at += 4;
   put(uint32_t(vertices));
+  put(uint32_t(quads));
   put(uint32_t(triangles));
   put(uint32_t(segments));
-  put(uint32_t(textured));
-  // The fan of face f: corners (start, start + i, start + i + 1).
-  auto for_each_fan_corner = [&mesh](auto visit) {
-    for (int32_t f = 0; f < mesh.num_faces(); ++f)
+  put(uint32_t((textured ? 1 : 0) | (shaded ? 2 : 0)));
+  Box3 box = bounding_box(mesh.positions);
+  for (const Vec3& p : curves.points) box.extend(p);
+  put_vec(box.min), put_vec(box.max);
+  // With texture coordinates, which belong to the corners, every corner is a vertex.
+  auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
+  if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_vec(mesh.positions[corner_vertex(c)]);
+  else for (const Vec3& p : mesh.positions) put_vec(p);
+  for (const Vec3& p : curves.points) put_vec(p);
+  if (shaded) {
+    char* const normals_end = at + normal_bytes;
+    auto put_normal = [&](Vec3 n) { // rounded half away from zero, without a libm call per component
+      for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(x * 127.0f + (x < 0 ? -0.5f : 0.5f)));
+    };
+    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_normal(normals[corner_vertex(c)]);
+    else for (const Vec3& n : normals) put_normal(n);
+    at = normals_end; // the curve's points have no normal: zero, and the padding
+  }
+  if (textured) {
+    for (const TexCoord& t : appearance.texcoords) put(t.u), put(t.v);
+    at += 8 * curves.points.size(); // the curve's points: (0, 0)
+  }
+  // A corner's vertex number in the view.
+  auto index = [&](int32_t c) { return uint32_t(textured ? size_t(c) : corner_vertex(c)); };
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) == 4)
+      for (int32_t i = 0; i < 4; ++i) put(index(mesh.face_start[f] + i));
+  // Other polygons fanned: corners (start, start + i, start + i + 1).
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    if (mesh.face_size(f) != 4)
       for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
-        for (int32_t c : {0, i, i + 1}) visit(mesh.face_start[f] + c);
-  };
-  if (textured) {
-    for_each_fan_corner([&](int32_t c) {
-      const Vec3 p = mesh.positions[size_t(mesh.face_vertices[size_t(c)])];
-      put(p.x), put(p.y), put(p.z);
-    });
-  } else {
-    for (const Vec3& p : mesh.positions) put(p.x), put(p.y), put(p.z);
-  }
-  for (const Vec3& p : curves.points) put(p.x), put(p.y), put(p.z);
-  if (textured) {
-    for_each_fan_corner([&](int32_t c) { put(appearance.texcoords[size_t(c)].u), put(appearance.texcoords[size_t(c)].v); });
-    for (size_t k = 0; k < curves.points.size(); ++k) put(0.0f), put(0.0f);
-    for (uint32_t v = 0; v < uint32_t(mesh_vertices); ++v) put(v);
-  } else {
-    for_each_fan_corner([&](int32_t c) { put(uint32_t(mesh.face_vertices[size_t(c)])); });
-  }
+        for (int32_t c : {0, i, i + 1}) put(index(mesh.face_start[f] + c));
   const uint32_t base = uint32_t(mesh_vertices);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t begin = curves.start[k], end = curves.start[k + 1];

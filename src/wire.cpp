@@ -324,31 +324,58 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
   if (!(limit > 0)) return out;
 
   // Parts of the curve that come back near each other: every pair of segments closer
-  // than 2 * limit is found with a uniform grid of at least that cell size. A pair at distance d
+  // than 2 * limit (times `reach`) is found with a uniform grid. A pair at distance d
   // forbids the radii in (d/2, arc/pi): up to d/2 the tubes stay apart, and from arc/pi
   // the pair lies within one bend of the tube, which the folding bound already covers.
-  // Cells no smaller than the mean segment, so that a long segment spans few of them,
-  // and few enough per axis that a cell's number fits 63 bits.
+  // Each segment is entered in the cells its box meets grown by half that distance, so
+  // that two segments closer than it share the cell of the midpoint between their
+  // nearest points: only pairs within a cell are looked at. Cells no smaller than the
+  // mean segment, so that a long segment spans few of them, and few enough per axis that
+  // a cell's number fits 63 bits.
   const Box3 box = bounding_box(centre.points);
   const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
   const double cell = std::max({2 * limit * reach, sum_length / double(n), extent / double(1 << 20)});
+  // Far above the float rounding of segment_distance, so that a pair it puts within
+  // reach is found however close to the edge.
+  const double slack = 1e-6 * std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                                        std::abs(box.max.y), std::abs(box.max.z)});
+  const double grow = limit * reach + slack;
   auto cell_of = [&](double v, double lo) { return int64_t(std::floor((v - lo) / cell)); };
-  const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1;
+  const int64_t nx = cell_of(box.max.x, box.min.x) + 1, ny = cell_of(box.max.y, box.min.y) + 1,
+                nz = cell_of(box.max.z, box.min.z) + 1;
   auto key = [&](int64_t x, int64_t y, int64_t z) { return (z * ny + y) * nx + x; };
+  // The cells [first, last] that coordinates in [lo - grow, hi + grow] meet, within the box.
+  auto cells_of = [&](float a, float b, float lo, int64_t count) {
+    return std::pair{std::max<int64_t>(0, cell_of(std::min(a, b) - grow, lo)),
+                     std::min(count - 1, cell_of(std::max(a, b) + grow, lo))};
+  };
   std::vector<std::pair<int64_t, int32_t>> entries;
   entries.reserve(n);
   for (size_t g = 0; g < n; ++g) {
     const Vec3 a = centre.points[g], b = centre.points[next(g)];
-    for (int64_t z = cell_of(std::min(a.z, b.z), box.min.z); z <= cell_of(std::max(a.z, b.z), box.min.z); ++z)
-      for (int64_t y = cell_of(std::min(a.y, b.y), box.min.y); y <= cell_of(std::max(a.y, b.y), box.min.y); ++y)
-        for (int64_t x = cell_of(std::min(a.x, b.x), box.min.x); x <= cell_of(std::max(a.x, b.x), box.min.x); ++x)
-          entries.push_back({key(x, y, z), int32_t(g)});
+    const auto [x0, x1] = cells_of(a.x, b.x, box.min.x, nx);
+    const auto [y0, y1] = cells_of(a.y, b.y, box.min.y, ny);
+    const auto [z0, z1] = cells_of(a.z, b.z, box.min.z, nz);
+    for (int64_t z = z0; z <= z1; ++z)
+      for (int64_t y = y0; y <= y1; ++y)
+        for (int64_t x = x0; x <= x1; ++x) entries.push_back({key(x, y, z), int32_t(g)});
   }
   std::sort(entries.begin(), entries.end());
   std::vector<std::pair<double, double>> forbidden; // (d/2, arc/pi)
+  // Segments apart by more than the reach along one axis are apart: that test spares
+  // segment_distance for most pairs a cell brings (cells are mostly far larger than the
+  // reach), and its slack keeps exactly the pairs segment_distance would keep.
+  auto apart = [&](Vec3 a0, Vec3 a1, Vec3 b0, Vec3 b1, double gap) {
+    auto axis = [&](float a, float b, float c, float d) {
+      return double(std::min(c, d)) - std::max(a, b) > gap || double(std::min(a, b)) - std::max(c, d) > gap;
+    };
+    return axis(a0.x, a1.x, b0.x, b1.x) || axis(a0.y, a1.y, b0.y, b1.y) || axis(a0.z, a1.z, b0.z, b1.z);
+  };
   auto consider = [&](size_t g, size_t h) {
     if (g == h || next(g) == h || next(h) == g) return;
-    const double d = segment_distance(centre.points[g], centre.points[next(g)], centre.points[h], centre.points[next(h)]);
+    const Vec3 g0 = centre.points[g], g1 = centre.points[next(g)], h0 = centre.points[h], h1 = centre.points[next(h)];
+    if (apart(g0, g1, h0, h1, 2 * limit * reach + slack)) return;
+    const double d = segment_distance(g0, g1, h0, h1);
     if (d >= 2 * limit * reach) return;
     double between = INFINITY;
     if (curve_of[g] == curve_of[h]) {
@@ -362,22 +389,11 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
       out.local[h] = std::min(out.local[h], d / 2);
     }
   };
-  // Neighbouring cells hold the segments within one cell size of those in this cell.
   for (size_t e = 0; e < entries.size();) {
     size_t end = e;
     while (end < entries.size() && entries[end].first == entries[e].first) ++end;
-    const int64_t k = entries[e].first, x = k % nx, y = (k / nx) % ny, z = k / (nx * ny);
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) {
-          const int64_t key2 = key(x + dx, y + dy, z + dz);
-          if (x + dx < 0 || y + dy < 0 || z + dz < 0 || x + dx >= nx || y + dy >= ny || key2 < k) continue;
-          const auto range = std::equal_range(entries.begin(), entries.end(), std::pair<int64_t, int32_t>{key2, -1},
-                                              [](const auto& a, const auto& b) { return a.first < b.first; });
-          for (size_t i = e; i < end; ++i)
-            for (auto it = range.first; it != range.second; ++it)
-              if (key2 != k || it->second > entries[i].second) consider(size_t(entries[i].second), size_t(it->second));
-        }
+    for (size_t i = e; i < end; ++i)
+      for (size_t j = i + 1; j < end; ++j) consider(size_t(entries[i].second), size_t(entries[j].second));
     e = end;
   }
   // The largest radius up to `limit` that no pair forbids: sweep the intervals by
@@ -510,6 +526,9 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     // slab turned by half a turn (both directions swap).
     connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
   }
+  // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
+  // better part of the time at 50k faces) only to copy it.
+  if (options.levels == 0) return control;
   return subdivide(control, {.levels = options.levels, .limit = true});
 }
 

@@ -123,6 +123,15 @@ try {
     !window.studio.state.pending, null, { timeout: 120000 });
   const duotone = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
   check(duotone.info.textured && duotone.stats.curves === 1, 'duotone shows a textured surface with one separating curve');
+  check(duotone.info.texture === duotone.stats.texture, `the page shows the atlas of ${duotone.stats.texture}, not ${duotone.info.texture}`);
+  // Other tiles bring their own atlas (a seed change keeps it: it depends on the tiles alone).
+  await page.selectOption('#tiles', 'dots');
+  await settled(await page.evaluate(() => window.studio.state.revision));
+  const dots = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
+  check(dots.stats.texture.startsWith('dots ') && dots.info.texture === dots.stats.texture,
+    `after choosing dots the page shows the atlas of ${dots.info.texture} (stats: ${dots.stats.texture})`);
+  await page.selectOption('#tiles', 'truchet');
+  await settled(await page.evaluate(() => window.studio.state.revision));
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_duotone.png') });
 
   // A bad file: the page shows the reader's precise message and the server keeps going.

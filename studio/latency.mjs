@@ -41,12 +41,12 @@ try {
         runs.push(await page.evaluate(async ([s, p]) => {
           document.getElementById('seed').value = s;
           await window.studio.make(p);
-          const { lastUpdateMs, stats } = window.studio.state;
-          return { total: lastUpdateMs, server: stats.seconds * 1000, triangles: stats.triangles, preview: stats.preview };
+          const { lastUpdateMs, stats, phases } = window.studio.state;
+          return { total: lastUpdateMs, server: stats.seconds * 1000, triangles: stats.triangles, preview: stats.preview, phases };
         }, [String(seed + (preview ? 10 : 0)), preview]));
       runs.sort((a, b) => a.total - b.total);
       const m = runs[1];
-      console.log(`${mode} levels ${levels} ${m.preview ? 'preview' : 'full'}: ${m.triangles} triangles, end to end ${m.total.toFixed(0)} ms (server ${m.server.toFixed(0)} ms)`);
+      console.log(`${mode} levels ${levels} ${m.preview ? 'preview' : 'full'}: ${m.triangles} triangles, end to end ${m.total.toFixed(0)} ms (server ${m.server.toFixed(0)} ms; ${Object.entries(m.phases).map(([k, v]) => `${k} ${v.toFixed(0)}`).join(', ')})`);
     }
   }
 } finally {

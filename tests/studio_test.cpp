@@ -128,6 +128,29 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
   }
 }
 
+// The session's last result lends its atlas to the next duotone only for the same tile
+// options: what is drawn is always the atlas of the options asked for.
+TEST(Studio, DuotoneReusesTheAtlasOnlyForTheSameTiles) {
+  const StudioSurface surface = demo_surface();
+  StudioParams params{.mode = StudioMode::duotone, .tiles = {.texture_size = 64}};
+  const StudioResult first = make_studio_result(surface, params);
+  const auto atlas = [](const StudioResult& r) { return r.appearance.materials.at(0).texture.rgba; };
+  params.job.cycle.seed = 7;
+  const StudioResult reseeded = make_studio_result(surface, params, &first);
+  EXPECT_EQ(atlas(reseeded), atlas(first));
+  EXPECT_EQ(reseeded.mesh.face_vertices, make_studio_result(surface, params).mesh.face_vertices);
+  for (const TileOptions& tiles : {TileOptions{.style = TileStyle::dots, .texture_size = 64},
+                                   TileOptions{.colors = {Color8{255, 0, 0}, Color8{0, 0, 255}}, .texture_size = 64},
+                                   TileOptions{.texture_size = 128}}) {
+    params.tiles = tiles;
+    const StudioResult changed = make_studio_result(surface, params, &reseeded);
+    EXPECT_EQ(atlas(changed), duotone_atlas(tiles).rgba);
+    EXPECT_NE(atlas(changed), atlas(first));
+    EXPECT_NE(nlohmann::json::parse(studio_stats_json(changed))["texture"], nlohmann::json::parse(studio_stats_json(first))["texture"]);
+  }
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(first))["texture"], "truchet #f2be22 #1c3e80 64");
+}
+
 TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   const StudioSurface surface = demo_surface();
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {
@@ -148,6 +171,27 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   StudioParams many{.mode = StudioMode::curve};
   many.job.curve.samples = 1000;
   EXPECT_EQ(studio_result_size(surface, many), 250 * studio_result_size(surface, {.mode = StudioMode::curve}));
+}
+
+// A preview that 2 curve samples would make larger than its budget (2.5M elements) takes
+// 1: a 64-sided wire on a 4,000-face sphere, 3.1M triangles at 2 samples.
+TEST(Studio, APreviewOverItsBudgetTakesFewerSamples) {
+  StudioSurface surface{.name = "sphere.obj"};
+  surface.repaired = repair(make_shape("sphere", 4000), surface.name);
+  StudioParams wide{.mode = StudioMode::constant_wire, .sides = 64};
+  StudioParams one = wide;
+  one.job.curve.samples = 1;
+  StudioParams two = wide;
+  two.job.curve.samples = 2;
+  ASSERT_GT(studio_result_size(surface, two), 2'500'000);
+  wide.preview = true;
+  EXPECT_EQ(studio_result_size(surface, wide), studio_result_size(surface, one));
+  const StudioResult quick = make_studio_result(surface, wide);
+  EXPECT_EQ(quick.params.job.curve.samples, 1);
+  EXPECT_EQ(quick.triangles, studio_result_size(surface, one));
+  // Within the budget a preview keeps its 2 samples.
+  StudioParams narrow{.mode = StudioMode::constant_wire, .preview = true};
+  EXPECT_EQ(studio_result_size(surface, narrow), studio_result_size(surface, {.mode = StudioMode::constant_wire}) / 2);
 }
 
 TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
@@ -190,36 +234,55 @@ TEST(Studio, UploadsOverTheFaceLimitAreRefused) {
   }
 }
 
-TEST(Studio, ViewBytesHoldTheTrianglesAndSegments) {
+TEST(Studio, ViewBytesHoldTheFacesAndSegments) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
+  mesh.add_face({0, 1, 2, 3});       // a quad goes as a quad
+  mesh.add_face({1, 4, 5});          // a triangle as a triangle
+  mesh.add_face({2, 1, 5, 6, 7});    // a pentagon fanned into 3 triangles
+  Polylines loop;
+  loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 2}};
+  loop.start = {0, 3};
+  const std::string bytes = studio_view_bytes(mesh, loop);
+  // Header, 11 positions, 11 normals of 3 bytes padded to 36, 1 quad, 4 triangles, 3 segments.
+  ASSERT_EQ(bytes.size(), 48u + 11 * 12 + 36 + 16 + 4 * 12 + 3 * 8);
+  EXPECT_EQ(bytes.substr(0, 4), "MNDR");
+  uint32_t counts[5];
+  std::memcpy(counts, bytes.data() + 4, sizeof counts);
+  EXPECT_EQ(std::vector<uint32_t>(counts, counts + 5), (std::vector<uint32_t>{11, 1, 4, 3, 2})); // normals, no texture
+  float box[6];
+  std::memcpy(box, bytes.data() + 24, sizeof box);
+  EXPECT_EQ(std::vector<float>(box, box + 6), (std::vector<float>{0, 0, 0, 2, 2, 2})); // the curve's points too
+  // The faces all face +z: every mesh vertex's normal is (0, 0, 127); the curve's points have none.
+  const char* normals = bytes.data() + 48 + 11 * 12;
+  for (int v = 0; v < 11; ++v)
+    EXPECT_EQ(std::vector<int>(normals + 3 * v, normals + 3 * v + 3), (std::vector<int>{0, 0, v < 8 ? 127 : 0})) << v;
+  uint32_t indices[16];
+  std::memcpy(indices, bytes.data() + 48 + 11 * 12 + 36, sizeof indices);
+  EXPECT_EQ(std::vector<uint32_t>(indices, indices + 16),
+            (std::vector<uint32_t>{0, 1, 2, 3, /* triangle */ 1, 4, 5, /* fan */ 2, 1, 5, 2, 5, 6, 2, 6, 7}));
+  uint32_t last_segment[2];
+  std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
+  EXPECT_EQ(last_segment[0], 10u); // 8 mesh vertices first, then the curve's: closes 10 -> 8
+  EXPECT_EQ(last_segment[1], 8u);
+  // A curve alone has neither normals nor texture coordinates.
+  const std::string curve = studio_view_bytes({}, loop);
+  ASSERT_EQ(curve.size(), 48u + 3 * 12 + 3 * 8);
+  std::memcpy(counts, curve.data() + 4, sizeof counts);
+  EXPECT_EQ(counts[4], 0u);
+  // With texture coordinates every face corner is a vertex of its own, its (u, v) after the normals.
   PolygonMesh quad;
   quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   quad.add_face({0, 1, 2, 3});
-  Polylines loop;
-  loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
-  loop.start = {0, 3};
-  const std::string bytes = studio_view_bytes(quad, loop);
-  ASSERT_EQ(bytes.size(), 20u + 7 * 12 + 2 * 12 + 3 * 8);
-  EXPECT_EQ(bytes.substr(0, 4), "MNDR");
-  uint32_t counts[4];
-  std::memcpy(counts, bytes.data() + 4, 16);
-  EXPECT_EQ(counts[0], 7u);
-  EXPECT_EQ(counts[1], 2u);
-  EXPECT_EQ(counts[2], 3u); // a closed loop of 3 points has 3 segments
-  EXPECT_EQ(counts[3], 0u); // no texture coordinates
-  uint32_t last_segment[2];
-  std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
-  EXPECT_EQ(last_segment[0], 6u); // 4 mesh vertices first, then the curve's: closes 6 -> 4
-  EXPECT_EQ(last_segment[1], 4u);
-  // With texture coordinates every triangle corner is a vertex of its own, its (u, v) after the positions.
   Appearance appearance{.materials = {{.name = "m"}}, .texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
   const std::string textured = studio_view_bytes(quad, {}, appearance);
-  ASSERT_EQ(textured.size(), 20u + 6 * 12 + 6 * 8 + 2 * 12);
-  std::memcpy(counts, textured.data() + 4, 16);
-  EXPECT_EQ(counts[0], 6u);
-  EXPECT_EQ(counts[3], 1u);
-  float uv[12];
-  std::memcpy(uv, textured.data() + 20 + 6 * 12, sizeof uv);
-  EXPECT_EQ(uv[4], 1.0f); // corner 2 of the first triangle (0, 1, 2) is (1, 1)
+  ASSERT_EQ(textured.size(), 48u + 4 * 12 + 12 + 4 * 8 + 16);
+  std::memcpy(counts, textured.data() + 4, sizeof counts);
+  EXPECT_EQ(counts[0], 4u);
+  EXPECT_EQ(counts[4], 3u);
+  float uv[8];
+  std::memcpy(uv, textured.data() + 48 + 4 * 12 + 12, sizeof uv);
+  EXPECT_EQ(uv[4], 1.0f); // corner 2 is (1, 1)
   EXPECT_EQ(uv[5], 1.0f);
 }
 

@@ -2,6 +2,8 @@
 
 #include "meander/studio_server.h"
 
+#include <malloc.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -21,7 +23,21 @@ struct ServeArgs {
   bool open = false;
 };
 
+// Every update allocates the same large arrays again. glibc hands blocks of 128 KiB and
+// more back to the kernel when they are freed, and on this kind of virtual machine a
+// fresh page costs more than the work on it (docs/benchmarks.md, huge pages): a third of
+// a preview's time went to zeroing pages. The server keeps up to 1 GiB of freed memory
+// in one arena instead, so that the next update, on any thread, reuses it; no block is
+// mapped on its own (which glibc does past 32 MiB whatever the threshold), so that a
+// 40 MB view is reused too.
+void keep_freed_memory() {
+  mallopt(M_ARENA_MAX, 1);
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+}
+
 void run_serve(const ServeArgs& a) {
+  keep_freed_memory();
   StudioServer server({.host = a.host,
                        .port = a.port,
                        .max_upload = a.max_upload,

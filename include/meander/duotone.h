@@ -111,6 +111,7 @@ struct TileOptions {
   TileStyle style = TileStyle::truchet;
   std::array<Color8, 2> colors{Color8{242, 190, 34}, Color8{28, 62, 128}}; // yellow, blue
   int32_t texture_size = 1024; // atlas width in pixels (height half of it), 64..8192
+  friend bool operator==(const TileOptions&, const TileOptions&) = default;
 };
 
 // The texture atlas: two square tiles side by side, tile k with its corner regions in
@@ -123,6 +124,11 @@ Texture duotone_atlas(const TileOptions& options);
 // coordinates that put its tile on it, turned to match its diagonal and its corners'
 // colours, one material with the atlas. O(quads) plus the atlas.
 TexturedMesh duotone_surface(const Duotone& duotone, const TileOptions& options);
+
+// The same with the atlas given: duotone_atlas(options) made before, which depends on
+// the options alone (the studio keeps it from one update to the next, where drawing it
+// took most of the time). O(quads).
+TexturedMesh duotone_surface(const Duotone& duotone, const TileOptions& options, Texture atlas);
 
 // The separating curves as closed polylines, one per loop (component), through the
 // midpoints of the quad sides they cross, following each tile's curve (arcs of 8

@@ -61,6 +61,11 @@ struct PolygonMesh {
   void add_face(std::initializer_list<int32_t> vertices) { add_face(std::span(vertices.begin(), vertices.size())); }
 };
 
+// Area-weighted vertex normals of the polygons fanned from their first vertex, unit
+// length; a vertex without area around it gets +z (glTF requires unit normals). GLB
+// files and the studio's view shade with them.
+std::vector<Vec3> vertex_normals(const PolygonMesh& mesh);
+
 // Polylines (the curves): polyline k has the points points[start[k] .. start[k+1]) and
 // closes back to its first point unless open[k] is set. `open` is empty when every
 // polyline is closed, as the curves Meander makes are; readers of files that hold open

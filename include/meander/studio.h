@@ -45,8 +45,9 @@ struct StudioParams {
   DuotoneRule rule = DuotoneRule::tree;
   TileOptions tiles;
   int subdivide = 0; // 0..5
-  // A preview while a slider moves: at most 2 curve samples per segment, levels and
-  // subdivide 0, `radius auto` as max_wire_radius (the analytic bound, unchecked), and no
+  // A preview while a slider moves: at most 2 curve samples per segment (1 where 2 would
+  // make the result larger than 2.5M elements, studio_result_size), levels and subdivide
+  // 0, `radius auto` as max_wire_radius (the analytic bound, unchecked), and no
   // printability report. The page asks for the full result when the slider stops.
   bool preview = false;
 };
@@ -111,7 +112,10 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 // (the live view's stats; none for a preview); or make_duotone, duotone_surface (subdivided if asked) and
 // separating_curves. Throws what those throw; TopologyError when no radius avoids a
 // self-intersection, as `meander wire`.
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params);
+// `previous`, the session's last result if any, lends its duotone atlas when the tile
+// options are the same (the atlas depends on them alone).
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params,
+                                const StudioResult* previous = nullptr);
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
 // for wires and ribbons vertices, faces, radius and (not for a preview, which has no
@@ -132,11 +136,17 @@ enum class StudioFile {
 StudioFile parse_studio_file(std::string_view name);
 
 // Geometry for the page's three.js view, little-endian: "MNDR", uint32 vertex count V,
-// triangle count T, segment count S, texture flag U; then V*3 float32 positions, if U is
-// 1 V*2 float32 texture coordinates, T*3 uint32 vertex indices (polygons fanned), S*2
-// uint32 indices of line segments (closed curves). With texture coordinates (an
-// appearance that has them) every triangle corner is a vertex of its own, as texture
-// seams need.
+// quad count Q, triangle count T, segment count S and flags F (bit 0: texture
+// coordinates, bit 1: normals), the bounding box of the positions as 6 float32 (min x,
+// y, z, max x, y, z); then V*3 float32 positions; if F has bit 1 (there are faces), V*3
+// int8 unit normals times 127 (area-weighted, vertex_normals; zero for the curve's
+// points) padded with zeros to a multiple of 4 bytes; if F has bit 0, V*2 float32
+// texture coordinates; Q*4 uint32 vertex indices of the quads (drawn as the triangles
+// 0-1-2 and 0-2-3), T*3 uint32 vertex indices of the triangles (the other polygons
+// fanned), S*2 uint32 indices of line segments (closed curves). With texture
+// coordinates (an appearance that has them) every face corner is a vertex of its own,
+// as texture seams need, with its vertex's normal. The page splits the quads and
+// otherwise draws the arrays as they are, with no loop over the vertices.
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance = {});
 
 struct StudioDownload {

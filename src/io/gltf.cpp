@@ -405,27 +405,6 @@ private:
   size_t bin_size_ = 0;
 };
 
-// Area-weighted vertex normals of the fanned polygons, unit length; a vertex without
-// area around it gets +z (the validator requires unit normals).
-std::vector<Vec3> vertex_normals(const PolygonMesh& mesh) {
-  std::vector<std::array<double, 3>> sum(mesh.positions.size(), {0, 0, 0});
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
-    const auto face = mesh.face(f);
-    for (size_t i = 1; i + 1 < face.size(); ++i) {
-      const Vec3 n = cross(mesh.positions[face[i]] - mesh.positions[face[0]], mesh.positions[face[i + 1]] - mesh.positions[face[0]]);
-      for (int32_t v : {face[0], face[i], face[i + 1]}) sum[v] = {sum[v][0] + n.x, sum[v][1] + n.y, sum[v][2] + n.z};
-    }
-  }
-  std::vector<Vec3> normals(mesh.positions.size());
-  for (size_t v = 0; v < sum.size(); ++v) {
-    const double length = std::sqrt(sum[v][0] * sum[v][0] + sum[v][1] * sum[v][1] + sum[v][2] * sum[v][2]);
-    normals[v] = length > 0 && std::isfinite(length)
-                     ? Vec3{float(sum[v][0] / length), float(sum[v][1] / length), float(sum[v][2] / length)}
-                     : Vec3{0, 0, 1};
-  }
-  return normals;
-}
-
 // The checks every GLB write makes first: a valid file needs finite positions and
 // indices in range.
 void require_writable(const PolygonMesh& mesh) {

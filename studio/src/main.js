@@ -17,13 +17,19 @@ camera.position.set(3, 2, 4);
 const controls = new OrbitControls(camera, renderer.domElement); // left: orbit, wheel: zoom, right: pan
 // Drawn on demand, not every frame: a software-rendered browser would otherwise take the
 // CPU the server needs for the next update.
-let frameQueued = false;
+let frameQueued = false, dirty = false;
+function draw() {
+  if (!dirty) return;
+  dirty = false;
+  renderer.render(scene, camera);
+}
 function redraw() {
+  dirty = true;
   if (frameQueued) return;
   frameQueued = true;
   requestAnimationFrame(() => {
     frameQueued = false;
-    renderer.render(scene, camera);
+    draw();
   });
 }
 controls.addEventListener('change', redraw);
@@ -41,6 +47,7 @@ const surfaceMaterial = new THREE.MeshStandardMaterial({
 const resultMaterial = new THREE.MeshStandardMaterial({ color: 0xb8733a, roughness: 0.45, metalness: 0.3, side: THREE.DoubleSide });
 const curveMaterial = new THREE.LineBasicMaterial({ color: 0xbf1f14 });
 const duotoneMaterial = new THREE.MeshStandardMaterial({ roughness: 0.8, side: THREE.DoubleSide });
+let loadedTexture = null; // stats.texture of the atlas on duotoneMaterial
 let surfaceObject = null;
 let resultObject = null;
 
@@ -54,36 +61,51 @@ function resize() {
 new ResizeObserver(resize).observe(container);
 resize();
 
-// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, triangle and
-// segment counts and a texture flag, then float32 positions, [float32 texture
-// coordinates], uint32 triangles, uint32 segments.
+// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, quad,
+// triangle and segment counts, flags (1: texture coordinates, 2: normals) and the
+// bounding box, then float32 positions, [int8 normals, padded to 4 bytes], [float32
+// texture coordinates], uint32 quads, uint32 triangles, uint32 segments. Every array but
+// the quads is used where it lies in the buffer: no loop over the vertices here
+// (computing normals in the page took longer than making a preview on the server).
 function parseView(buffer) {
-  const header = new DataView(buffer, 0, 20);
+  const header = new DataView(buffer, 0, 48);
   if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MNDR') throw new Error('not a Meander view');
-  const v = header.getUint32(4, true), t = header.getUint32(8, true), s = header.getUint32(12, true);
-  const textured = header.getUint32(16, true) === 1;
-  let offset = 20;
-  const positions = new Float32Array(buffer, offset, v * 3);
-  offset += v * 12;
-  const uvs = textured ? new Float32Array(buffer, offset, v * 2) : null;
-  if (textured) offset += v * 8;
-  const triangles = new Uint32Array(buffer, offset, t * 3);
-  const segments = new Uint32Array(buffer, offset + t * 12, s * 2);
-  const position = new THREE.BufferAttribute(positions, 3);
-  if (t > 0) {
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', position);
-    if (uvs) geometry.setAttribute('uv', new THREE.BufferAttribute(uvs, 2));
-    geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
-    geometry.computeVertexNormals();
-    geometry.computeBoundingBox();
-    return { geometry, lines: false, textured };
-  }
+  const [v, q, t, s, flags] = [4, 8, 12, 16, 20].map((at) => header.getUint32(at, true));
+  const textured = (flags & 1) !== 0, shaded = (flags & 2) !== 0;
+  const box = new Float32Array(buffer, 24, 6);
+  let offset = 48;
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', position);
-  geometry.setIndex(new THREE.BufferAttribute(segments, 1));
-  geometry.computeBoundingBox();
-  return { geometry, lines: true };
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 3), 3));
+  offset += v * 12;
+  if (shaded) {
+    geometry.setAttribute('normal', new THREE.BufferAttribute(new Int8Array(buffer, offset, v * 3), 3, true));
+    offset += Math.ceil(v * 3 / 4) * 4;
+  }
+  if (textured) {
+    geometry.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 2), 2));
+    offset += v * 8;
+  }
+  const quads = new Uint32Array(buffer, offset, q * 4);
+  const triangles = new Uint32Array(buffer, offset + q * 16, t * 3);
+  const lines = q + t === 0;
+  let index = triangles;
+  if (q > 0) {
+    // Each quad as its two triangles, the way the server fans a polygon.
+    index = new Uint32Array(q * 6 + t * 3);
+    for (let i = 0, j = 0; i < q * 4; i += 4, j += 6) {
+      const a = quads[i], b = quads[i + 1], c = quads[i + 2], d = quads[i + 3];
+      index[j] = a; index[j + 1] = b; index[j + 2] = c;
+      index[j + 3] = a; index[j + 4] = c; index[j + 5] = d;
+    }
+    index.set(triangles, q * 6);
+  }
+  geometry.setIndex(new THREE.BufferAttribute(lines ? new Uint32Array(buffer, offset + q * 16 + t * 12, s * 2) : index, 1));
+  // The bounds three.js would otherwise compute with a loop over the positions (the
+  // sphere when it first culls): the box's circumscribed sphere encloses them too.
+  geometry.boundingBox = new THREE.Box3(new THREE.Vector3(box[0], box[1], box[2]), new THREE.Vector3(box[3], box[4], box[5]));
+  geometry.boundingSphere = geometry.boundingBox.isEmpty() ? new THREE.Sphere()
+    : geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
+  return { geometry, lines, textured };
 }
 
 function replace(old, object) {
@@ -123,7 +145,7 @@ function applySurfaceStyle() {
 }
 
 // ---- state and the API ------------------------------------------------------------------
-const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, error: null, stats: null };
+const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, phases: null, error: null, stats: null };
 window.studio = {
   state,
   // The latency script (latency.mjs) times a preview and a full update through this.
@@ -137,6 +159,7 @@ window.studio = {
       indices: resultObject.geometry.index.count,
       lines: resultObject.isLineSegments === true,
       textured: resultObject.geometry.attributes.uv !== undefined,
+      texture: loadedTexture,
       min: box.min.toArray(), max: box.max.toArray(),
     };
   },
@@ -250,23 +273,39 @@ async function make(preview = false) {
   state.pending = false;
   setBusy(true);
   const start = performance.now();
+  const phases = {};
+  let mark = start;
+  const lap = (name) => { const now = performance.now(); phases[name] = now - mark; mark = now; };
   try {
     const stats = await (await api('/api/make', {
       method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...params(), preview }),
     })).json();
+    lap('make');
     const buffer = await (await api(`/api/result/${state.session}/view.bin`)).arrayBuffer();
+    lap('fetch');
     const { geometry, lines, textured } = parseView(buffer);
-    if (textured) {
+    lap('parse');
+    // The atlas depends on the tile options alone (stats.texture names them): it is
+    // fetched only when they change, not on every seed or subdivision change.
+    if (textured && stats.texture !== loadedTexture) {
       const texture = await new THREE.TextureLoader().loadAsync(`/api/result/${state.session}/texture.png?r=${stats.revision}`);
       texture.colorSpace = THREE.SRGBColorSpace;
       texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
       duotoneMaterial.map?.dispose();
       duotoneMaterial.map = texture;
       duotoneMaterial.needsUpdate = true;
+      loadedTexture = stats.texture;
+      lap('texture');
     }
     const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
     resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
+    // The update ends when the frame showing it is drawn: the geometry's upload and the
+    // first draw are part of it.
+    draw();
+    renderer.getContext().finish();
+    lap('draw');
     state.lastUpdateMs = performance.now() - start;
+    state.phases = phases;
     state.revision = stats.revision;
     state.stats = stats;
     showStats(stats);
