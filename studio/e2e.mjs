@@ -114,6 +114,19 @@ try {
 
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e.png') });
 
+  // Any other change (here the seed field) shows its preview first, then the full result.
+  await page.evaluate(() => {
+    window.seenStats = [];
+    new MutationObserver(() => window.seenStats.push(document.querySelector('#stats td')?.textContent))
+      .observe(document.getElementById('stats'), { childList: true, subtree: true });
+  });
+  const seedRevision = await page.evaluate(() => window.studio.state.revision);
+  await page.fill('#seed', '12345');
+  await settled(seedRevision);
+  const seen = await page.evaluate(() => window.seenStats);
+  check(seen.length >= 2 && seen[0].startsWith('preview') && seen.at(-1) === 'full result',
+    `a seed change shows a preview, then the full result (stats seen: ${JSON.stringify(seen)})`);
+
   // Duotone: a textured surface in the scene (texture size kept small for speed).
   const wireRevision = await page.evaluate(() => window.studio.state.revision);
   await page.selectOption('#mode', 'duotone');

@@ -261,13 +261,14 @@ function params() {
   };
 }
 
-// One request at a time; changes made meanwhile are coalesced into one more request, for
-// the full result if any of them asked for it. A preview (a slider moving) is the
-// server's quick version: fewer samples and levels, no printability report.
+// One request at a time; changes made meanwhile are coalesced: at most one preview and
+// one full result follow, the preview first. A preview is the server's quick version:
+// fewer samples and levels, no printability report.
 async function make(preview = false) {
   if (!state.session) return;
   if (state.busy) {
-    state.pending = state.pending === 'full' || !preview ? 'full' : 'preview';
+    const asked = preview ? 'preview' : 'full';
+    state.pending = !state.pending || state.pending === asked ? asked : 'both';
     return;
   }
   state.pending = false;
@@ -315,14 +316,16 @@ async function make(preview = false) {
   } finally {
     setBusy(false);
     updateDownloads();
-    if (state.pending) make(state.pending === 'preview');
+    const next = state.pending;
+    if (next) make(next !== 'full');
+    if (next === 'both') make(false);
   }
 }
 
 function showStats(stats) {
   const yesNo = (b) => (b ? 'yes' : 'no');
   const rows = [
-    ['stats of', stats.preview ? 'preview (the full result follows when the slider is let go)' : 'full result'],
+    ['stats of', stats.preview ? 'preview (the full result follows)' : 'full result'],
     ['triangles', stats.triangles.toLocaleString()],
     [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
     ['curve length', stats.curve_length.toPrecision(5)],
@@ -353,9 +356,16 @@ function updateDownloads() {
 let debounce = null;
 function changed(event) {
   clearTimeout(debounce);
-  // A slider being dragged fires 'input' (a preview); letting it go fires 'change' (the full result).
-  const preview = event?.type === 'input' && event.target.type === 'range';
-  debounce = setTimeout(() => make(preview), preview ? 30 : 120);
+  // A slider being dragged fires 'input' (previews only); letting it go fires 'change'
+  // (the full result, whose preview is on screen already). Any other change shows its
+  // preview first, then the full result: the view follows within the preview's time
+  // even where the full result (a wire's printability report) takes seconds.
+  const slider = event?.target?.type === 'range';
+  const dragging = slider && event.type === 'input', released = slider && event.type === 'change';
+  debounce = setTimeout(() => {
+    if (!released) make(true);
+    if (!dragging) make(false);
+  }, 30);
 }
 
 function showModeControls() {
