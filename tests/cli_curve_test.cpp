@@ -87,17 +87,21 @@ INSTANTIATE_TEST_SUITE_P(Index, CurveOnRealMesh, ::testing::ValuesIn(real_meshes
   return test_name(param_info.param.file);
 });
 
-// --max-faces refuses a larger input, with exit code 1 and no output.
-TEST(CliCurve, MaxFacesRefusesLargerInputs) {
+// --max-faces refuses a larger input before any work, with exit code 1 and no output,
+// in each command that makes something from a mesh.
+TEST(CliCurve, MaxFacesRefusesLargerInputsInEveryCommand) {
   const auto dir = output_dir();
-  const auto mesh = dir / "sphere.obj", out = dir / "curve.obj";
+  const auto mesh = dir / "sphere.obj";
   ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "500", "-o", mesh.string()}).exit_code, 0);
-  const CommandResult refused = run_cli({"curve", mesh.string(), "-o", out.string(), "--max-faces", "100"});
-  EXPECT_EQ(refused.exit_code, 1);
-  EXPECT_NE(refused.err.find(mesh.string() + ": "), std::string::npos) << refused.err;
-  EXPECT_NE(refused.err.find(" faces, more than the limit of 100"), std::string::npos) << refused.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
-  EXPECT_EQ(run_cli({"curve", mesh.string(), "-o", out.string(), "--max-faces", "100000"}).exit_code, 0);
+  for (const auto& [command, output] : {std::pair{"curve", "curve.obj"}, {"wire", "wire.stl"}, {"duotone", "duotone.obj"}}) {
+    const auto out = dir / output;
+    const CommandResult refused = run_cli({command, mesh.string(), "-o", out.string(), "--max-faces", "100"});
+    EXPECT_EQ(refused.exit_code, 1) << command;
+    EXPECT_NE(refused.err.find(mesh.string() + ": "), std::string::npos) << command << ": " << refused.err;
+    EXPECT_NE(refused.err.find(" faces, more than the limit of 100"), std::string::npos) << command << ": " << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << command;
+    EXPECT_EQ(run_cli({command, mesh.string(), "-o", out.string(), "--max-faces", "100000"}).exit_code, 0) << command;
+  }
 }
 
 // --strict refuses what the default repairs, naming the file and the problem.

@@ -68,19 +68,6 @@ TEST(CliDuotone, GlbPassesTheKhronosValidatorPlainAndSubdivided) {
   }
 }
 
-// --max-faces refuses a larger input before any work, as curve and wire do.
-TEST(CliDuotone, MaxFacesRefusesLargerInputs) {
-  const auto dir = output_dir();
-  const auto mesh = dir / "duotone_limit.obj", out = dir / "duotone_limit_out.obj";
-  ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "500", "-o", mesh.string()}).exit_code, 0);
-  const CommandResult refused = run_cli({"duotone", mesh.string(), "-o", out.string(), "--max-faces", "100"});
-  EXPECT_EQ(refused.exit_code, 1);
-  EXPECT_THAT(refused.err, HasSubstr(mesh.string() + ": "));
-  EXPECT_THAT(refused.err, HasSubstr(" faces, more than the limit of 100"));
-  EXPECT_FALSE(std::filesystem::exists(out));
-  EXPECT_EQ(run_cli({"duotone", mesh.string(), "-o", out.string(), "--max-faces", "100000"}).exit_code, 0);
-}
-
 TEST(CliDuotone, ABoundaryFallsBackToDualSimplestWithANote) {
   const fs::path dir = output_dir();
   ASSERT_EQ(run_cli({"generate", "grid", "-o", (dir / "grid.obj").string(), "--faces", "50"}).exit_code, 0);
