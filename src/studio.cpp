@@ -315,10 +315,23 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
   if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
     std::optional<double> radius; // none: auto, checked by constant_wire
-    if (params.radius > 0) radius = params.radius;
-    // A preview takes the analytic bound for auto: the check that grows it costs more than the wire.
-    else if (params.preview)
-      radius = max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples);
+    if (params.radius > 0) {
+      radius = params.radius;
+    } else if (params.preview) {
+      // The check that grows the analytic bound costs more than the wire, so a preview
+      // does without it: it takes the radius of the full result before it when that was
+      // made on the same curve (another slider is moving), so that the preview is as
+      // thick as the result that follows; else the bound on its own, coarser curve.
+      const CurveJob& job = requested.job;
+      const bool same_curve = previous && !previous->params.preview && previous->params.mode == mode &&
+                              previous->params.radius == 0 && previous->radius > 0 &&
+                              previous->params.job.quadrangulation == job.quadrangulation &&
+                              previous->params.job.cycle.tree == job.cycle.tree && previous->params.job.cycle.seed == job.cycle.seed &&
+                              previous->params.job.curve.smoothing == job.curve.smoothing &&
+                              previous->params.job.curve.samples == job.curve.samples;
+      radius = same_curve ? previous->radius
+                          : max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples);
+    }
     ConstantWire made;
     if (!radius || *radius > 0)
       made = constant_wire(result.curve.quads, result.curve.cycle,

@@ -223,6 +223,31 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(message_of(R"({"session": "a", "preview": 1})"), "preview: expected true or false, got 1");
 }
 
+// A constant preview with `radius auto` after a full result on the same curve takes that
+// result's checked radius (another slider, here the sides, is moving), so that it is as
+// thick as what follows; on another curve (a new seed) it takes the bound on its own curve.
+TEST(Studio, AConstantPreviewKeepsTheFullResultsRadiusOnTheSameCurve) {
+  const StudioSurface surface = demo_surface();
+  const StudioResult full = make_studio_result(surface, {.mode = StudioMode::constant_wire});
+  ASSERT_GT(full.radius, 0);
+  StudioParams sides{.mode = StudioMode::constant_wire, .sides = 5, .preview = true};
+  const StudioResult same = make_studio_result(surface, sides, &full);
+  EXPECT_EQ(same.radius, full.radius);
+  EXPECT_EQ(same.params.sides, 5);
+  EXPECT_NE(make_studio_result(surface, sides).radius, full.radius);
+  StudioParams reseeded = sides;
+  reseeded.job.cycle.seed = 9;
+  const StudioResult other = make_studio_result(surface, reseeded, &full);
+  EXPECT_EQ(other.radius, max_wire_radius(other.curve.curves, 2));
+  // Only a full result lends its radius, and only to the same mode.
+  const StudioResult after_preview = make_studio_result(surface, sides, &same);
+  EXPECT_EQ(after_preview.radius, max_wire_radius(after_preview.curve.curves, 2));
+  StudioParams ribbon = sides;
+  ribbon.mode = StudioMode::constant_ribbon;
+  const StudioResult band = make_studio_result(surface, ribbon, &full);
+  EXPECT_EQ(band.radius, max_wire_radius(band.curve.curves, 2));
+}
+
 TEST(Studio, UploadsOverTheFaceLimitAreRefused) {
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
   EXPECT_EQ(load_studio_surface("square.obj", square, 2).input_faces, 2);

@@ -113,7 +113,8 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 // separating_curves. Throws what those throw; TopologyError when no radius avoids a
 // self-intersection, as `meander wire`.
 // `previous`, the session's last result if any, lends its duotone atlas when the tile
-// options are the same (the atlas depends on them alone).
+// options are the same (the atlas depends on them alone), and to a constant preview with
+// `radius auto` the radius it found, when it is a full result on the same curve.
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params,
                                 const StudioResult* previous = nullptr);
 
