@@ -45,10 +45,11 @@ struct StudioParams {
   DuotoneRule rule = DuotoneRule::tree;
   TileOptions tiles;
   int subdivide = 0; // 0..5
-  // A preview while a slider moves: at most 2 curve samples per segment (1 where 2 would
-  // make the result larger than 2.5M elements, studio_result_size), levels and subdivide
-  // 0, `radius auto` as max_wire_radius (the analytic bound, unchecked), and no
-  // printability report. The page asks for the full result when the slider stops.
+  // The quick version the page shows first after each change (and alone while a slider
+  // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
+  // larger than 2.5M elements, studio_result_size), levels and subdivide 0, `radius auto`
+  // unchecked (see make_studio_result), and no printability report. The full result
+  // follows it.
   bool preview = false;
 };
 
