@@ -327,8 +327,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
                               previous->params.radius == 0 && previous->radius > 0 &&
                               previous->params.job.quadrangulation == job.quadrangulation &&
                               previous->params.job.cycle.tree == job.cycle.tree && previous->params.job.cycle.seed == job.cycle.seed &&
-                              previous->params.job.curve.smoothing == job.curve.smoothing &&
-                              previous->params.job.curve.samples == job.curve.samples;
+                              previous->params.job.curve == job.curve;
       radius = same_curve ? previous->radius
                           : max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples);
     }

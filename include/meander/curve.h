@@ -33,6 +33,7 @@ std::array<float, 4> bspline_weights(float u);
 struct CurveOptions {
   Smoothing smoothing = Smoothing::bspline;
   int samples = 4; // points per control polygon segment, >= 1
+  friend bool operator==(const CurveOptions&, const CurveOptions&) = default;
 };
 
 // Samples each closed control polygon into a closed smooth polyline with
