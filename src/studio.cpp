@@ -566,7 +566,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   throw UsageError("unknown result file");
 }
 
-std::string StudioSessions::add(StudioSurface surface) {
+StudioSessions::Added StudioSessions::add(StudioSurface surface) {
   std::random_device random;
   std::string id;
   for (int i = 0; i < 4; ++i) {
@@ -577,13 +577,13 @@ std::string StudioSessions::add(StudioSurface surface) {
   auto session = std::make_shared<Session>();
   session->surface = std::make_shared<const StudioSurface>(std::move(surface));
   std::lock_guard guard(lock_);
-  sessions_[id] = {std::move(session), ++clock_};
+  sessions_[id] = {session, ++clock_};
   while (sessions_.size() > capacity_) {
     auto oldest = std::min_element(sessions_.begin(), sessions_.end(),
                                    [](const auto& a, const auto& b) { return a.second.created < b.second.created; });
     sessions_.erase(oldest);
   }
-  return id;
+  return {std::move(id), std::move(session)};
 }
 
 std::shared_ptr<StudioSessions::Session> StudioSessions::find(std::string_view id) const {

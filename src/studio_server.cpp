@@ -345,9 +345,8 @@ struct StudioServer::Impl {
   }
 
   void add_session(httplib::Response& res, StudioSurface surface) {
-    std::string id = sessions.add(std::move(surface));
-    const auto session = sessions.find(id);
-    send_json(res, 200, surface_json(id, *session->surface));
+    const StudioSessions::Added added = sessions.add(std::move(surface));
+    send_json(res, 200, surface_json(added.id, *added.session->surface));
   }
 
   std::string too_large(const httplib::Request& req) const {

@@ -362,15 +362,23 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
 
 TEST(Studio, SessionsAreFoundByIdAndTheOldestDropped) {
   StudioSessions sessions(2);
-  const std::string a = sessions.add(demo_surface());
+  const std::string a = sessions.add(demo_surface()).id;
   EXPECT_EQ(a.size(), 32u);
   EXPECT_NE(sessions.find(a), nullptr);
   EXPECT_EQ(sessions.find("../" + a), nullptr);
-  const std::string b = sessions.add(demo_surface()), c = sessions.add(demo_surface());
+  const std::string b = sessions.add(demo_surface()).id, c = sessions.add(demo_surface()).id;
   EXPECT_NE(a, b);
   EXPECT_EQ(sessions.find(a), nullptr);
   EXPECT_NE(sessions.find(b), nullptr);
   EXPECT_NE(sessions.find(c), nullptr);
+  // The caller keeps the session it added even when it is dropped before it can look it
+  // up (100 concurrent uploads into 32 sessions crashed the server that way).
+  StudioSessions one(1);
+  const StudioSessions::Added first = one.add(demo_surface());
+  one.add(demo_surface());
+  EXPECT_EQ(one.find(first.id), nullptr);
+  ASSERT_NE(first.session, nullptr);
+  EXPECT_EQ(first.session->surface->input_faces, demo_surface().input_faces);
 }
 
 } // namespace

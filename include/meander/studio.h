@@ -178,8 +178,14 @@ public:
   };
 
   explicit StudioSessions(size_t capacity = 32) : capacity_(capacity) {}
-  // Stores the surface in a new session; returns its id.
-  std::string add(StudioSurface surface);
+  struct Added {
+    std::string id;
+    std::shared_ptr<Session> session;
+  };
+  // Stores the surface in a new session; returns its id and the session itself, which
+  // the caller holds even when other threads' adds drop it from the table at once (a
+  // find by the id could then come back empty).
+  Added add(StudioSurface surface);
   // The session, or null for an unknown or dropped id (any string is safe to pass).
   std::shared_ptr<Session> find(std::string_view id) const;
 
