@@ -1,9 +1,11 @@
 #include "meander/hamiltonian.h"
 
 #include "meander/error.h"
+#include "random.h"
 #include "union_find.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -42,6 +44,31 @@ void require_closed_sides(const QuadMesh& m) {
         throw TopologyError("quad " + std::to_string(q) + " side " + std::to_string(k) +
                             " lies on a boundary: this quad mesh has boundary edges, and Taubin's cycle "
                             "needs a closed quad mesh (use --quad dual-simplest, which handles boundaries)");
+}
+
+// How close the triangle (a, b, c) is to equilateral: 4 sqrt(3) area / (sum of squared
+// sides), 1 for equilateral, 0 for degenerate.
+double triangle_shape(Vec3 a, Vec3 b, Vec3 c) {
+  const double squares = dot(b - a, b - a) + dot(c - b, c - b) + dot(a - c, a - c);
+  return squares > 0 ? 2 * std::sqrt(3.0) * norm(cross(b - a, c - a)) / squares : 0.0;
+}
+
+// The worse shape of quad q's two triangles under diagonal d.
+double split_shape(const QuadMesh& m, int32_t q, uint8_t d) {
+  const auto& c = m.quads[size_t(q)];
+  auto at = [&](int k) { return m.positions[size_t(c[size_t(k & 3)])]; };
+  return std::min(triangle_shape(at(d), at(d + 1), at(d + 2)), triangle_shape(at(d + 2), at(d + 3), at(d)));
+}
+
+// The shaped tree's rank of flipping quad q from diagonal d: how much the flip improves
+// the worse of its triangles (a gain of 1 ranks 0, a loss of 1 ranks 2 * steps), plus a
+// dither in [0, 1) from a hash of the quad and the seed, so that quads of about the same
+// gain mix at random instead of splitting at a hard threshold.
+uint8_t flip_rank(const QuadMesh& m, int32_t q, uint8_t d, uint64_t seed) {
+  constexpr double steps = (Graph::max_rank - 1) / 2.0;
+  const double gain = split_shape(m, q, d ^ 1) - split_shape(m, q, d);
+  const double dither = double(Random(seed ^ (uint64_t(q) * 0xd1b54a32d192ed03ULL)).next() >> 11) * 0x1p-53;
+  return uint8_t(std::clamp(std::floor(steps * (1 - gain) + dither), 0.0, double(Graph::max_rank - 1)));
 }
 
 // Every quad side closed (only half quads end at a boundary) and triangle names within
@@ -113,6 +140,13 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
         }
     for (int32_t q = 0; q < nq; ++q)
       if (!m.is_half(q)) join(q, loop[size_t(2 * q)], loop[size_t(2 * q + 1)]);
+  }
+  // The shaped tree flips first the quads whose flip shapes their triangles better: the
+  // variable wire's slabs fold where the cycle crosses a sliver (docs/wires.md).
+  if (options.tree == TreeStrategy::shaped) {
+    graph.rank.resize(edge_quad.size());
+    for (size_t e = 0; e < edge_quad.size(); ++e)
+      graph.rank[e] = flip_rank(m, edge_quad[e], diagonal[size_t(edge_quad[e])], options.seed);
   }
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop

@@ -11,10 +11,11 @@ namespace meander {
 
 TreeStrategy parse_tree_strategy(std::string_view name) {
   if (name == "random") return TreeStrategy::random;
+  if (name == "shaped") return TreeStrategy::shaped;
   if (name == "uniform") return TreeStrategy::uniform;
   if (name == "bfs") return TreeStrategy::bfs;
   if (name == "dfs") return TreeStrategy::dfs;
-  throw UsageError("unknown tree strategy '" + std::string(name) + "' (expected random, uniform, bfs or dfs)");
+  throw UsageError("unknown tree strategy '" + std::string(name) + "' (expected random, uniform, bfs, dfs or shaped)");
 }
 
 std::string_view to_string(TreeStrategy strategy) {
@@ -23,6 +24,7 @@ std::string_view to_string(TreeStrategy strategy) {
   case TreeStrategy::uniform: return "uniform";
   case TreeStrategy::bfs: return "bfs";
   case TreeStrategy::dfs: return "dfs";
+  case TreeStrategy::shaped: return "shaped";
   }
   return "?";
 }
@@ -57,7 +59,9 @@ Adjacency build_adjacency(const Graph& g) {
   return a;
 }
 
-std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
+// Kruskal over the edges in random order, or with `ranked` by increasing Graph::rank and
+// in random order within a rank.
+std::vector<int32_t> kruskal_random(const Graph& g, Random& rng, bool ranked) {
   // Shuffling the edges themselves (not their ids) lets the loop below read them in
   // order and ask for the union-find entries of edges a few steps ahead, so the cache
   // misses of the random order overlap instead of queueing.
@@ -68,12 +72,22 @@ std::vector<int32_t> kruskal_random(const Graph& g, Random& rng) {
   // hundred buckets chosen at random (a few sequential write streams), then shuffle each
   // bucket, small enough to stay in cache. Random bucket sizes and uniform shuffles
   // inside them make every order equally likely, like one Fisher-Yates pass, without its
-  // cache miss per swap.
+  // cache miss per swap. Ranked, each rank has its own run of buckets.
   constexpr uint32_t buckets = 256;
   const size_t m = g.edges.size();
+  ranked = ranked && !g.rank.empty();
+  if (ranked && g.rank.size() != m)
+    throw UsageError("spanning tree: " + std::to_string(g.rank.size()) + " ranks for " + std::to_string(m) + " edges");
+  constexpr uint32_t per_rank = buckets / Graph::max_rank;
   std::vector<uint8_t> bucket_of(m);
   std::vector<size_t> start(buckets + 1, 0);
-  for (size_t i = 0; i < m; ++i) ++start[(bucket_of[i] = uint8_t(rng.below(buckets))) + 1];
+  for (size_t i = 0; i < m; ++i) {
+    if (ranked && g.rank[i] >= Graph::max_rank)
+      throw UsageError("spanning tree: edge " + std::to_string(i) + " has rank " + std::to_string(g.rank[i]) + " (at most " +
+                       std::to_string(Graph::max_rank - 1) + ")");
+    bucket_of[i] = uint8_t(ranked ? g.rank[i] * per_rank + rng.below(per_rank) : rng.below(buckets));
+    ++start[bucket_of[i] + 1];
+  }
   for (uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
   std::vector<Edge> order(m);
   {
@@ -206,7 +220,8 @@ std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, 
   Random rng(seed);
   std::vector<int32_t> forest;
   switch (strategy) {
-  case TreeStrategy::random: forest = kruskal_random(graph, rng); break;
+  case TreeStrategy::random: forest = kruskal_random(graph, rng, false); break;
+  case TreeStrategy::shaped: forest = kruskal_random(graph, rng, true); break;
   case TreeStrategy::uniform: forest = wilson(graph, rng); break;
   case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
   case TreeStrategy::dfs: forest = depth_first(graph, rng); break;

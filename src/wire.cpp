@@ -503,8 +503,27 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // The automatic thickness follows the ribbon's local width, as the width follows the
   // triangles: one global figure makes tall walls of the narrow parts, whose tops meet
   // in hollows and fold over in tight turns.
+  //
+  // Where the slabs of two consecutive triangles meet at an angle, the sections at the
+  // two ends of their connector lean towards each other on the inside of the bend and
+  // cross at L / (2 tan(angle / 2)) from it (L: the connector's length): a thicker slab
+  // folds into itself there (the tetrahedron's edges, a hexahedral mesh's creases). The
+  // automatic thickness stays below that, with a margin for the smoothing.
+  std::vector<float> bend_limit(left.size(), INFINITY);
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), rungs = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
+    for (size_t k = 1; k < rungs; k += 2) {
+      const size_t a = first + k, b = first + (k + 1) % rungs;
+      const bool swap = (k + 1) % rungs == 0 && ladder.mobius[size_t(c)]; // left meets right
+      const double angle = std::acos(std::clamp(double(dot(up[a], up[b])) * (swap ? -1 : 1), -1.0, 1.0));
+      const double length = swap ? std::min(norm(left[b] - right[a]), norm(right[b] - left[a]))
+                                 : std::min(norm(left[b] - left[a]), norm(right[b] - right[a]));
+      if (angle > 1e-6) bend_limit[a] = bend_limit[b] = std::min({bend_limit[a], bend_limit[b], float(0.7 * length / (2 * std::tan(angle / 2)))});
+    }
+  }
   auto half_thickness = [&](size_t rung) {
-    return float((options.thickness > 0 ? options.thickness : 0.5 * norm(right[rung] - left[rung])) / 2);
+    if (options.thickness > 0) return float(options.thickness / 2);
+    return std::min(bend_limit[rung], float(0.25 * norm(right[rung] - left[rung])));
   };
 
   // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,

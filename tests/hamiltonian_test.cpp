@@ -58,7 +58,7 @@ TEST_P(CycleOnShape, DualSimplestGivesOneCyclePerComponent) {
 INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
                          ::testing::Combine(::testing::ValuesIn(cases),
                                             ::testing::Values(TreeStrategy::random, TreeStrategy::uniform,
-                                                              TreeStrategy::bfs, TreeStrategy::dfs)),
+                                                              TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped)),
                          [](const auto& param_info) {
                            return std::string(std::get<0>(param_info.param).name) + "_" +
                                   std::string(to_string(std::get<1>(param_info.param)));
@@ -162,7 +162,7 @@ TEST(Cycle, ThreeQuadsOnFourVerticesProjectivePlane) {
   mesh.add_face({0, 2, 3, 1});
   mesh.add_face({2, 1, 3, 0});
   const QuadMesh quads = quads_as_is(mesh, build_connectivity(mesh));
-  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs})
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped})
     for (uint64_t seed = 0; seed < 8; ++seed) {
       const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = s, .seed = seed});
       EXPECT_EQ(cycle.num_cycles(), 1);
@@ -171,10 +171,32 @@ TEST(Cycle, ThreeQuadsOnFourVerticesProjectivePlane) {
     }
 }
 
+// On a mesh of long thin faces the dual-of-Simplest triangle across a long side (edge
+// end, face centre, edge end) is a sliver; the shaped tree flips those quads first.
+TEST(Cycle, ShapedTreeAvoidsSlivers) {
+  PolygonMesh mesh = grid(800);
+  for (Vec3& p : mesh.positions) p.x *= 8;
+  const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+  auto slivers = [&](TreeStrategy tree) {
+    const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = tree, .seed = 3});
+    EXPECT_EQ(verify_cycle(quads, cycle), "");
+    int count = 0;
+    for (int32_t id : cycle.order) {
+      const auto [p, apex, n] = cycle_triangle(quads, id);
+      const Vec3 a = quads.positions[size_t(p)] - quads.positions[size_t(apex)], b = quads.positions[size_t(n)] - quads.positions[size_t(apex)];
+      count += dot(a, b) < -0.9 * norm(a) * norm(b); // apex angle above 154 degrees
+    }
+    return count;
+  };
+  const int random = slivers(TreeStrategy::random), shaped = slivers(TreeStrategy::shaped);
+  EXPECT_GT(random, 100);
+  EXPECT_LT(shaped, random / 4);
+}
+
 TEST(Cycle, SameSeedSameCycleOtherSeedOtherCycle) {
   const PolygonMesh mesh = torus(800);
   const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
-  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs}) {
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped}) {
     const TriangleCycle a = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
     const TriangleCycle b = hamiltonian_cycle(quads, {.tree = s, .seed = 5});
     const TriangleCycle c = hamiltonian_cycle(quads, {.tree = s, .seed = 6});

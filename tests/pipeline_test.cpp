@@ -65,7 +65,7 @@ TEST(Pipeline, ArbitrarySoupsGiveValidCyclesOrClearErrors) {
     }
     ++accepted;
     const int expected = components(repaired.mesh);
-    for (TreeStrategy tree : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs}) {
+    for (TreeStrategy tree : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped}) {
       const CurveResult r = make_curve(repaired.mesh, repaired.connectivity, {.cycle = {.tree = tree, .seed = uint64_t(trial)}});
       ASSERT_EQ(verify_cycle(r.quads, r.cycle), "");
       ASSERT_EQ(r.cycle.num_cycles(), expected);

@@ -51,7 +51,7 @@ void expect_spanning_forest(const Graph& g, const std::vector<int32_t>& forest, 
 
 TEST(SpanningTree, EveryStrategySpansEveryComponent) {
   const Graph g = grid_and_triangle(12, 9);
-  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs})
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped})
     for (uint64_t seed : {1, 2, 99}) {
       SCOPED_TRACE(std::string(to_string(s)) + " seed " + std::to_string(seed));
       expect_spanning_forest(g, spanning_forest(g, s, seed), 2);
@@ -97,14 +97,51 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
   EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
 }
 
+// Kruskal by rank gives a minimum spanning forest for the ranks as weights; within a rank
+// the order is random, so seeds still differ.
+TEST(SpanningTree, ShapedTreeIsAMinimumSpanningForestByRank) {
+  Graph g = grid_and_triangle(20, 15);
+  for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t((e * 7919) % 5));
+  auto weight = [&](const std::vector<int32_t>& forest) {
+    int total = 0;
+    for (int32_t e : forest) total += g.rank[size_t(e)];
+    return total;
+  };
+  // The reference: Kruskal over the edges sorted by rank, ties by id.
+  std::vector<int32_t> order(g.edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.rank[size_t(a)] < g.rank[size_t(b)]; });
+  std::vector<int32_t> label(size_t(g.num_nodes));
+  std::iota(label.begin(), label.end(), 0);
+  auto root = [&](int32_t x) {
+    while (label[size_t(x)] != x) x = label[size_t(x)];
+    return x;
+  };
+  std::vector<int32_t> reference;
+  for (int32_t e : order)
+    if (const int32_t a = root(g.edges[size_t(e)][0]), b = root(g.edges[size_t(e)][1]); a != b) {
+      label[size_t(a)] = b;
+      reference.push_back(e);
+    }
+  const std::vector<int32_t> one = spanning_forest(g, TreeStrategy::shaped, 1), two = spanning_forest(g, TreeStrategy::shaped, 2);
+  expect_spanning_forest(g, one, 2);
+  EXPECT_EQ(weight(one), weight(reference));
+  EXPECT_EQ(weight(two), weight(reference));
+  EXPECT_NE(one, two);
+  EXPECT_GT(weight(spanning_forest(g, TreeStrategy::random, 1)), weight(reference));
+  g.rank.pop_back();
+  EXPECT_THROW(spanning_forest(g, TreeStrategy::shaped, 1), UsageError);
+}
+
 TEST(SpanningTree, ParsesNamesAndRefusesOthers) {
   EXPECT_EQ(parse_tree_strategy("uniform"), TreeStrategy::uniform);
   EXPECT_EQ(to_string(parse_tree_strategy("dfs")), "dfs");
+  EXPECT_EQ(to_string(parse_tree_strategy("shaped")), "shaped");
   try {
     parse_tree_strategy("prim");
     FAIL();
   } catch (const UsageError& e) {
-    EXPECT_STREQ(e.what(), "unknown tree strategy 'prim' (expected random, uniform, bfs or dfs)");
+    EXPECT_STREQ(e.what(), "unknown tree strategy 'prim' (expected random, uniform, bfs, dfs or shaped)");
   }
 }
 

@@ -26,7 +26,9 @@ void require_output_path(const std::filesystem::path& path, std::initializer_lis
 
 void add_curve_flags(CLI::App& app, CurveFlags& flags) {
   app.add_option("--quad", flags.quad, "quadrangulation")->check(CLI::IsMember({"dual-simplest", "catmull-clark", "none"}))->capture_default_str();
-  app.add_option("--tree", flags.tree, "spanning tree strategy: the style of the meander")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
+  app.add_option("--tree", flags.tree, "spanning tree strategy: the style of the meander (shaped: random, preferring "
+                                      "well-shaped triangles)")
+      ->check(CLI::IsMember({"random", "uniform", "bfs", "dfs", "shaped"}))->capture_default_str();
   app.add_option("--seed", flags.seed, "random seed (same seed, same output)")->capture_default_str();
   app.add_option("--smooth", flags.smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
   app.add_option("--samples", flags.samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();

@@ -106,6 +106,9 @@ Command add_wire_command(CLI::App& parent) {
       ->check(CLI::IsMember({"constant", "variable"}))->capture_default_str();
   app->add_option("--shape", args->shape, "wire (closed tube) or ribbon (band on the surface)")->check(CLI::IsMember({"wire", "ribbon"}))->capture_default_str();
   add_curve_flags(*app, args->curve);
+  CLI::Option* tree = app->get_option("--tree");
+  tree->description(tree->get_description() + "; --method variable defaults to shaped: its slabs fold where the cycle "
+                                              "crosses slivers");
   app->add_option("--radius", args->radius, "constant: tube radius or half the ribbon width in mesh units, or auto: the "
                                             "largest that does not self-intersect")->capture_default_str();
   app->add_option("--sides", args->sides, "constant wire: sides of the swept polygon")->check(CLI::Range(3, 64))->capture_default_str();
@@ -118,7 +121,10 @@ Command add_wire_command(CLI::App& parent) {
   add_picture_options(*app, args->picture, "the --png picture", png);
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took");
-  return {app, [args] { run_wire(*args); }};
+  return {app, [args, tree] {
+            if (args->method == "variable" && tree->count() == 0) args->curve.tree = "shaped";
+            run_wire(*args);
+          }};
 }
 
 } // namespace meander::cli

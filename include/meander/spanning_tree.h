@@ -16,17 +16,21 @@ enum class TreeStrategy {
   uniform, // Wilson's algorithm: every spanning tree equally likely
   bfs,     // breadth-first from a random root in each component
   dfs,     // depth-first from a random root, neighbours in random order
+  shaped,  // Kruskal by Graph::rank, lowest first, in random order within a rank
 };
 
-// Parses "random" | "uniform" | "bfs" | "dfs"; throws UsageError otherwise.
+// Parses "random" | "uniform" | "bfs" | "dfs" | "shaped"; throws UsageError otherwise.
 TreeStrategy parse_tree_strategy(std::string_view name);
 std::string_view to_string(TreeStrategy strategy);
 
 // An undirected multigraph on nodes 0..num_nodes-1; edges may repeat, self loops are
-// ignored.
+// ignored. `rank` (one per edge, below max_rank, or empty: all alike) orders the edges
+// for the shaped strategy; the others ignore it.
 struct Graph {
+  static constexpr int max_rank = 32;
   int32_t num_nodes = 0;
   std::vector<std::array<int32_t, 2>> edges;
+  std::vector<uint8_t> rank;
 };
 
 // The ids of the edges of a spanning forest (one tree per connected component),
