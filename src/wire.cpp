@@ -455,6 +455,40 @@ ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   return {sweep_mesh(sweep, options.shape, options.sides, radius), radius};
 }
 
+namespace {
+
+// The quads of a smoothed wire are not flat, and where two parts of it pass close, which
+// diagonal splits them decides whether they touch. Each quad is split here, along the
+// diagonal whose triangles' area normals agree best (as CGAL's triangulate_faces does),
+// so that every writer, our check and a slicer see the same, better, triangles instead
+// of each fanning from the first corner.
+PolygonMesh split_quads(const PolygonMesh& mesh) {
+  PolygonMesh out;
+  out.positions = mesh.positions;
+  out.face_vertices.reserve(size_t(mesh.num_faces()) * 6);
+  out.face_start.reserve(size_t(mesh.num_faces()) * 2 + 1);
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::span<const int32_t> v = mesh.face(f);
+    if (v.size() != 4) {
+      out.add_face(v);
+      continue;
+    }
+    const auto p = [&](int k) { return mesh.positions[size_t(v[size_t(k)])]; };
+    const double along_02 = dot(cross(p(1) - p(0), p(2) - p(0)), cross(p(2) - p(0), p(3) - p(0)));
+    const double along_13 = dot(cross(p(2) - p(1), p(3) - p(1)), cross(p(3) - p(1), p(0) - p(1)));
+    if (along_02 >= along_13) {
+      out.add_face({v[0], v[1], v[2]});
+      out.add_face({v[0], v[2], v[3]});
+    } else {
+      out.add_face({v[1], v[2], v[3]});
+      out.add_face({v[1], v[3], v[0]});
+    }
+  }
+  return out;
+}
+
+} // namespace
+
 PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
   auto unit = [](double v) { return v >= 0 && v <= 1; };
   if (!unit(options.s) || !unit(options.t))
@@ -508,8 +542,17 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // two ends of their connector lean towards each other on the inside of the bend and
   // cross at L / (2 tan(angle / 2)) from it (L: the connector's length): a thicker slab
   // folds into itself there (the tetrahedron's edges, a hexahedral mesh's creases). The
-  // automatic thickness stays below that, with a margin for the smoothing.
-  std::vector<float> bend_limit(left.size(), INFINITY);
+  // automatic thickness stays below that, with a margin for the smoothing, and below the
+  // triangle's smallest altitude: a slab taller than its triangle is wide (a sliver of a
+  // CAD model's fans, a scan's needles) leans into its neighbours wherever the surface
+  // curves.
+  std::vector<float> thickness_limit(left.size(), INFINITY);
+  for (size_t i = 0; i < triangles; ++i) {
+    const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
+    const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
+    const double longest = std::max({norm(a - p), norm(q - a), norm(p - q)});
+    thickness_limit[2 * i] = thickness_limit[2 * i + 1] = float(longest > 0 ? 0.5 * norm(cross(a - p, q - p)) / longest : 0.0);
+  }
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), rungs = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
     for (size_t k = 1; k < rungs; k += 2) {
@@ -518,12 +561,12 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
       const double angle = std::acos(std::clamp(double(dot(up[a], up[b])) * (swap ? -1 : 1), -1.0, 1.0));
       const double length = swap ? std::min(norm(left[b] - right[a]), norm(right[b] - left[a]))
                                  : std::min(norm(left[b] - left[a]), norm(right[b] - right[a]));
-      if (angle > 1e-6) bend_limit[a] = bend_limit[b] = std::min({bend_limit[a], bend_limit[b], float(0.7 * length / (2 * std::tan(angle / 2)))});
+      if (angle > 1e-6) thickness_limit[a] = thickness_limit[b] = std::min({thickness_limit[a], thickness_limit[b], float(0.7 * length / (2 * std::tan(angle / 2)))});
     }
   }
   auto half_thickness = [&](size_t rung) {
     if (options.thickness > 0) return float(options.thickness / 2);
-    return std::min(bend_limit[rung], float(0.25 * norm(right[rung] - left[rung])));
+    return std::min(thickness_limit[rung], float(0.25 * norm(right[rung] - left[rung])));
   };
 
   // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,
@@ -547,8 +590,7 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   }
   // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
   // better part of the time at 50k faces) only to copy it.
-  if (options.levels == 0) return control;
-  return subdivide(control, {.levels = options.levels, .limit = true});
+  return split_quads(options.levels == 0 ? control : subdivide(control, {.levels = options.levels, .limit = true}));
 }
 
 } // namespace meander

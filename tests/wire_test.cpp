@@ -99,11 +99,11 @@ TEST(Wire, RibbonFacesPointOutOfTheSurface) {
   const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0});
   for (int32_t f = 0; f < ribbon.num_faces(); ++f) {
     const auto v = ribbon.face(f);
-    const Vec3 a = ribbon.positions[size_t(v[0])], b = ribbon.positions[size_t(v[1])], c = ribbon.positions[size_t(v[2])],
-               d = ribbon.positions[size_t(v[3])];
-    const Vec3 n = cross(c - a, d - b);
+    ASSERT_EQ(v.size(), 3u);
+    const Vec3 a = ribbon.positions[size_t(v[0])], b = ribbon.positions[size_t(v[1])], c = ribbon.positions[size_t(v[2])];
+    const Vec3 n = cross(b - a, c - a);
     if (norm(n) > 1e-9) {
-      EXPECT_GT(dot(n, a + c), 0) << "face " << f;
+      EXPECT_GT(dot(n, a + b + c), 0) << "face " << f;
     }
   }
 }
