@@ -21,3 +21,6 @@ done
 # Figure 14: constant-diameter wires on a quad mesh used as it is.
 "$MEANDER" wire "$MESHES/spot_quadrangulated.obj" --quad none --radius 0.0035 -o "$OUT/spot_quads.stl" \
   --png images/wire_spot_quads.png --size 440x440 --view 60,20
+# A coarse CAD-like mesh whose rectangles make slivers: the variable wire on the shaped tree.
+"$MEANDER" wire "$MESHES/beveledcube.obj" -o "$OUT/cube.stl" --method variable \
+  --png images/wire_beveledcube_variable.png --size 300x300 --view 30,25

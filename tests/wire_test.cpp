@@ -108,6 +108,29 @@ TEST(Wire, RibbonFacesPointOutOfTheSurface) {
   }
 }
 
+// The automatic thickness: half the rung's width, but no more than the triangle's
+// smallest altitude, so that the slabs of slivers (here the triangles across the long
+// sides of a grid stretched 8 times) do not stand as walls taller than they are wide.
+TEST(Wire, AutomaticThicknessStaysBelowTheTrianglesAltitude) {
+  PolygonMesh mesh = grid(400);
+  for (Vec3& p : mesh.positions) p.x *= 8;
+  const CurveResult curve = curve_of(mesh);
+  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 0});
+  ASSERT_EQ(wire.positions.size(), 8 * curve.cycle.order.size()); // two slab sections per triangle
+  int limited = 0;
+  for (size_t rung = 0; rung < 2 * curve.cycle.order.size(); ++rung) {
+    const auto [p, apex, n] = cycle_triangle(curve.quads, curve.cycle.order[rung / 2]);
+    const Vec3 a = curve.quads.positions[size_t(p)], b = curve.quads.positions[size_t(apex)], c = curve.quads.positions[size_t(n)];
+    const double altitude = norm(cross(b - a, c - a)) / std::max({norm(b - a), norm(c - b), norm(a - c)});
+    const Vec3* section = wire.positions.data() + 4 * rung; // left below, left above, right above, right below
+    const double thickness = norm(section[1] - section[0]), width = norm(section[2] - section[1]);
+    EXPECT_LE(thickness, altitude * (1 + 1e-5) + 1e-7) << "rung " << rung;
+    EXPECT_LE(thickness, width / 2 * (1 + 1e-5) + 1e-7) << "rung " << rung;
+    limited += thickness < 0.99 * width / 2;
+  }
+  EXPECT_GT(limited, 0);
+}
+
 // On a Moebius band the dual-of-Simplest cycle is the outline of a spanning tree's
 // neighbourhood, a disk: it is two-sided, so wires and ribbons close as on any surface.
 TEST(Wire, CycleOnAMoebiusBandIsTwoSided) {
