@@ -261,13 +261,15 @@ namespace {
 // The analytic clearance of a tube around closed polylines: the radius, and per point
 // the smallest radius at which anything there may run into the tube, so that a check
 // of larger radii can look only where it matters. Pairs of segments are searched up to
-// `reach` times the local bounds.
+// `reach` times the local bounds. Without `bends`, only the parts that come back near
+// each other count, not the curvature (for slabs, whose thickness is across the curve's
+// plane rather than around it).
 struct Clearance {
   double radius = 0;
   std::vector<double> local;
 };
 
-Clearance tube_clearance(const Polylines& centre, int samples_per_segment, double reach) {
+Clearance tube_clearance(const Polylines& centre, int samples_per_segment, double reach, bool bends = true) {
   const size_t n = centre.points.size();
   Clearance out;
   out.local.assign(n, INFINITY);
@@ -307,7 +309,7 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
   // along the other's normal. On a hairpin that extent is tiny or even negative.
   double limit = 2.0 * std::max(1, samples_per_segment) * sum_length / double(n);
   auto section = [&](size_t g) { return section_normal(centre.points[prev(g)], centre.points[g], centre.points[next(g)]); };
-  for (size_t g = 0; g < n; ++g) {
+  for (size_t g = 0; g < n && bends; ++g) {
     const Vec3 a = centre.points[prev(g)], b = centre.points[g], c = centre.points[next(g)];
     const double twice_area = norm(cross(b - a, c - a));
     if (twice_area > 0) out.local[g] = std::min(out.local[g], norm(b - a) * norm(c - b) * norm(c - a) / (2 * twice_area));
@@ -563,6 +565,19 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
                                  : std::min(norm(left[b] - left[a]), norm(right[b] - right[a]));
       if (angle > 1e-6) thickness_limit[a] = thickness_limit[b] = std::min({thickness_limit[a], thickness_limit[b], float(0.7 * length / (2 * std::tan(angle / 2)))});
     }
+  }
+  // And the slabs of passes that come back near each other (the two sides of a thin
+  // leg or plate) must not reach each other: each stays below 0.7 times half the distance
+  // from its rung's midpoint to any other part of the strip's midline, found as the
+  // constant wire's clearance is, on a grid, without its bends.
+  if (!ribbon && options.thickness == 0) {
+    Polylines midline;
+    midline.points.resize(left.size());
+    for (size_t r = 0; r < left.size(); ++r) midline.points[r] = (left[r] + right[r]) * 0.5f;
+    midline.start.resize(cycle.cycle_start.size());
+    for (size_t c = 0; c < cycle.cycle_start.size(); ++c) midline.start[c] = 2 * cycle.cycle_start[c];
+    const Clearance apart = tube_clearance(midline, 1, 1.0, false);
+    for (size_t r = 0; r < left.size(); ++r) thickness_limit[r] = std::min(thickness_limit[r], float(0.7 * apart.local[r]));
   }
   auto half_thickness = [&](size_t rung) {
     if (options.thickness > 0) return float(options.thickness / 2);

@@ -131,6 +131,20 @@ TEST(Wire, AutomaticThicknessStaysBelowTheTrianglesAltitude) {
   EXPECT_GT(limited, 0);
 }
 
+// On a sphere squashed into a thin plate the passes on its two sides are closer than
+// the slabs' automatic thickness: the thickness stays below half their distance.
+TEST(Wire, SlabsOnBothSidesOfAThinPlateStayApart) {
+  PolygonMesh mesh = sphere(400);
+  for (Vec3& p : mesh.positions) p.z *= 0.02f;
+  // The shaped tree, as `meander wire --method variable` builds it: the rim's slivers fold
+  // on the random one.
+  const CurveResult curve = make_curve(repair(std::move(mesh), "plate").mesh, {.cycle = {.tree = TreeStrategy::shaped}});
+  EXPECT_FALSE(check_printability(variable_wire(curve.quads, curve.cycle, {.levels = 1}), {.thickness = false}).self_intersecting);
+  // An explicit thickness is used as given: this one runs into itself.
+  const PolygonMesh thick = variable_wire(curve.quads, curve.cycle, {.thickness = 0.04, .levels = 1});
+  EXPECT_TRUE(check_printability(thick, {.thickness = false}).self_intersecting);
+}
+
 // On a Moebius band the dual-of-Simplest cycle is the outline of a spanning tree's
 // neighbourhood, a disk: it is two-sided, so wires and ribbons close as on any surface.
 TEST(Wire, CycleOnAMoebiusBandIsTwoSided) {
