@@ -263,7 +263,8 @@ namespace {
 // of larger radii can look only where it matters. Pairs of segments are searched up to
 // `reach` times the local bounds. Without `bends`, only the parts that come back near
 // each other count, not the curvature (for slabs, whose thickness is across the curve's
-// plane rather than around it).
+// plane rather than around it), and only the local bounds are computed (`radius` is
+// left at the search limit).
 struct Clearance {
   double radius = 0;
   std::vector<double> local;
@@ -386,7 +387,7 @@ Clearance tube_clearance(const Polylines& centre, int samples_per_segment, doubl
       between = std::min(inner, total[size_t(curve_of[g])] - inner - length[lo] - length[hi]);
     }
     if (between / std::numbers::pi > d / 2) {
-      if (d / 2 < limit) forbidden.push_back({d / 2, between / std::numbers::pi});
+      if (d / 2 < limit && bends) forbidden.push_back({d / 2, between / std::numbers::pi});
       out.local[g] = std::min(out.local[g], d / 2);
       out.local[h] = std::min(out.local[h], d / 2);
     }
