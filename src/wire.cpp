@@ -465,9 +465,9 @@ namespace {
 // diagonal whose triangles' area normals agree best (as CGAL's triangulate_faces does),
 // so that every writer, our check and a slicer see the same, better, triangles instead
 // of each fanning from the first corner.
-PolygonMesh split_quads(const PolygonMesh& mesh) {
+PolygonMesh split_quads(PolygonMesh mesh) {
   PolygonMesh out;
-  out.positions = mesh.positions;
+  out.positions = std::move(mesh.positions);
   out.face_vertices.reserve(size_t(mesh.num_faces()) * 6);
   out.face_start.reserve(size_t(mesh.num_faces()) * 2 + 1);
   for (int32_t f = 0; f < mesh.num_faces(); ++f) {
@@ -476,7 +476,7 @@ PolygonMesh split_quads(const PolygonMesh& mesh) {
       out.add_face(v);
       continue;
     }
-    const auto p = [&](int k) { return mesh.positions[size_t(v[size_t(k)])]; };
+    const auto p = [&](int k) { return out.positions[size_t(v[size_t(k)])]; };
     const double along_02 = dot(cross(p(1) - p(0), p(2) - p(0)), cross(p(2) - p(0), p(3) - p(0)));
     const double along_13 = dot(cross(p(2) - p(1), p(3) - p(1)), cross(p(3) - p(1), p(0) - p(1)));
     if (along_02 >= along_13) {
@@ -549,14 +549,16 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // triangle's smallest altitude: a slab taller than its triangle is wide (a sliver of a
   // CAD model's fans, a scan's needles) leans into its neighbours wherever the surface
   // curves.
-  std::vector<float> thickness_limit(left.size(), INFINITY);
-  for (size_t i = 0; i < triangles; ++i) {
+  // Only a wire of automatic thickness uses these limits.
+  const bool automatic = !ribbon && options.thickness == 0;
+  std::vector<float> thickness_limit(automatic ? left.size() : 0);
+  for (size_t i = 0; i < thickness_limit.size() / 2; ++i) {
     const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
     const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
     const double longest = std::max({norm(a - p), norm(q - a), norm(p - q)});
     thickness_limit[2 * i] = thickness_limit[2 * i + 1] = float(longest > 0 ? 0.5 * norm(cross(a - p, q - p)) / longest : 0.0);
   }
-  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+  for (int32_t c = 0; c < cycle.num_cycles() && automatic; ++c) {
     const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), rungs = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
     for (size_t k = 1; k < rungs; k += 2) {
       const size_t a = first + k, b = first + (k + 1) % rungs;
@@ -571,7 +573,7 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // leg or plate) must not reach each other: each stays below 0.7 times half the distance
   // from its rung's midpoint to any other part of the strip's midline, found as the
   // constant wire's clearance is, on a grid, without its bends.
-  if (!ribbon && options.thickness == 0) {
+  if (automatic) {
     Polylines midline;
     midline.points.resize(left.size());
     for (size_t r = 0; r < left.size(); ++r) midline.points[r] = (left[r] + right[r]) * 0.5f;
@@ -581,7 +583,7 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
     for (size_t r = 0; r < left.size(); ++r) thickness_limit[r] = std::min(thickness_limit[r], float(0.7 * apart.local[r]));
   }
   auto half_thickness = [&](size_t rung) {
-    if (options.thickness > 0) return float(options.thickness / 2);
+    if (!automatic) return float(options.thickness / 2);
     return std::min(thickness_limit[rung], float(0.25 * norm(right[rung] - left[rung])));
   };
 
