@@ -262,6 +262,20 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
   return {tris.face[size_t(first >> 32)], tris.face[size_t(first & 0xffffffffu)]};
 }
 
+// Marks in `hit` both triangles of every intersecting pair.
+void mark_intersecting(const PolygonMesh& mesh, const Triangles& tris, const std::vector<uint8_t>& skip,
+                       const TriangleBvh& bvh, std::vector<uint8_t>& hit) {
+  bvh.for_each_overlapping_pair([&](int32_t i, int32_t j) {
+    if (skip[size_t(i)] || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)]) return;
+    // Threads share the flags; any of them writes only 1, so relaxed order is enough.
+    std::atomic_ref<uint8_t> hit_i(hit[size_t(i)]), hit_j(hit[size_t(j)]);
+    if (hit_i.load(std::memory_order_relaxed) && hit_j.load(std::memory_order_relaxed)) return; // nothing to learn
+    if (!intersect(mesh, tris, i, j)) return;
+    hit_i.store(1, std::memory_order_relaxed);
+    hit_j.store(1, std::memory_order_relaxed);
+  });
+}
+
 // Fills report.components and report.volume from inspect()'s components: the
 // connectivity they need is built once, there.
 void measure_components(const PolygonMesh& mesh, const Triangles& tris, const MeshReport& topology,
@@ -448,7 +462,9 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
   report.degenerate_triangles = int32_t(std::count(skip.begin(), skip.end(), 1));
   if (!options.self_intersections && !options.thickness) return report;
 
-  if (options.self_intersections) {
+  if (options.self_intersections && options.known_clear) {
+    report.self_intersections_checked = true;
+  } else if (options.self_intersections) {
     report.self_intersections_checked = true;
     const TriangleBvh bvh(mesh.positions, tris.corners);
     report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh);
@@ -462,6 +478,47 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     min_thickness(mesh, tris, inward, report);
   }
   return report;
+}
+
+std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among) {
+  const Triangles tris = fan(mesh);
+  std::vector<uint8_t> skip(tris.corners.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) skip[i] = degenerate(mesh, tris.corners[i]);
+  });
+  std::vector<uint8_t> hit(tris.corners.size());
+  if (among.empty()) {
+    mark_intersecting(mesh, tris, skip, TriangleBvh(mesh.positions, tris.corners), hit);
+  } else {
+    // A tree over the chosen faces' triangles only, and every triangle's box looked up
+    // in it: a pair of two chosen triangles is tested from the lower one.
+    std::vector<int32_t> chosen;
+    std::vector<std::array<int32_t, 3>> corners;
+    for (size_t i = 0; i < tris.corners.size(); ++i)
+      if (among[size_t(tris.face[i])] && !skip[i]) {
+        chosen.push_back(int32_t(i));
+        corners.push_back(tris.corners[i]);
+      }
+    const TriangleBvh bvh(mesh.positions, corners);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.corners.size(), 1 << 12), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        if (skip[i]) continue;
+        TriangleBvh::Box box;
+        for (const int32_t v : tris.corners[i]) box.extend(mesh.positions[size_t(v)]);
+        const bool i_chosen = among[size_t(tris.face[i])];
+        bvh.for_each_overlapping(box, [&](int32_t k) {
+          const size_t j = size_t(chosen[size_t(k)]);
+          if ((i_chosen && j <= i) || tris.face[i] == tris.face[j] || !intersect(mesh, tris, int32_t(i), int32_t(j))) return;
+          std::atomic_ref<uint8_t>(hit[i]).store(1, std::memory_order_relaxed);
+          std::atomic_ref<uint8_t>(hit[j]).store(1, std::memory_order_relaxed);
+        });
+      }
+    });
+  }
+  std::vector<int32_t> faces;
+  for (size_t i = 0; i < hit.size(); ++i)
+    if (hit[i] && (faces.empty() || faces.back() != tris.face[i])) faces.push_back(tris.face[i]);
+  return faces;
 }
 
 std::string printability_json(const PrintabilityReport& r) {

@@ -313,6 +313,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, params.job);
   result.curve_length = total_length(result.curve.curves);
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
+  bool known_clear = false; // variable_wire searched its result already
   if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
     std::optional<double> radius; // none: auto, checked by constant_wire
     if (params.radius > 0) {
@@ -340,16 +341,18 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
     result.radius = made.radius;
     result.mesh = std::move(made.mesh);
   } else if (mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon) {
-    result.mesh = variable_wire(result.curve.quads, result.curve.cycle,
-                                {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,
-                                 .levels = params.levels});
+    VariableWire made = variable_wire(result.curve.quads, result.curve.cycle,
+                                      {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,
+                                       .levels = params.levels});
+    result.mesh = std::move(made.mesh);
+    known_clear = made.clear;
   }
   if (mode == StudioMode::curve) {
     result.triangles = int64_t(result.curve.cycle.order.size());
   } else if (params.preview) {
     for (int32_t f = 0; f < result.mesh.num_faces(); ++f) result.triangles += std::max(0, result.mesh.face_size(f) - 2);
   } else {
-    result.report = check_printability(result.mesh, {.thickness = false});
+    result.report = check_printability(result.mesh, {.known_clear = known_clear, .thickness = false});
     result.triangles = result.report.triangles;
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -36,10 +36,10 @@ struct Uv {
   }
 };
 
-// Refines the mesh and, if given, its per-corner texture coordinates and per-face
-// materials (empty: none).
-TexturedMesh refine(const PolygonMesh& mesh, std::span<const TexCoord> texcoords, std::span<const int32_t> face_material,
-                    const SubdivideOptions& options) {
+// The topology of `mesh` (and of its per-corner texture coordinates, if given) refined
+// uniformly `options.levels` times.
+std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> refine_topology(const PolygonMesh& mesh, std::span<const TexCoord> texcoords,
+                                                                  const SubdivideOptions& options) {
   using namespace OpenSubdiv;
   if (options.levels < 0) throw UsageError("subdivision levels must be >= 0 (got " + std::to_string(options.levels) + ")");
   if (double(mesh.num_corners()) * std::pow(4.0, options.levels) > 2147483647.0)
@@ -73,39 +73,60 @@ TexturedMesh refine(const PolygonMesh& mesh, std::span<const TexCoord> texcoords
   Far::TopologyRefiner::UniformOptions uniform(options.levels);
   uniform.fullTopologyInLastLevel = true; // Limit() needs it
   refiner->RefineUniform(uniform);
+  return refiner;
+}
 
-  std::vector<Point> points(size_t(refiner->GetNumVerticesTotal()));
-  for (int32_t v = 0; v < mesh.num_vertices(); ++v) {
-    const Vec3 p = mesh.positions[size_t(v)];
-    points[size_t(v)] = {p.x, p.y, p.z};
-  }
-  Far::PrimvarRefiner primvar(*refiner);
+// The finest level's positions for these control positions, on the limit surface if
+// `limit`.
+void interpolate_positions(const OpenSubdiv::Far::TopologyRefiner& refiner, bool limit_surface,
+                      std::span<const Vec3> control, std::vector<Vec3>& out) {
+  using namespace OpenSubdiv;
+  const int levels = refiner.GetMaxLevel();
+  std::vector<Point> points(size_t(refiner.GetNumVerticesTotal()));
+  for (size_t v = 0; v < control.size(); ++v) points[v] = {control[v].x, control[v].y, control[v].z};
+  Far::PrimvarRefiner primvar(refiner);
   Point* src = points.data();
-  for (int level = 1; level <= options.levels; ++level) {
-    Point* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+  for (int level = 1; level <= levels; ++level) {
+    Point* dst = src + refiner.GetLevel(level - 1).GetNumVertices();
     primvar.Interpolate(level, src, dst);
     src = dst;
   }
-  const Far::TopologyLevel& finest = refiner->GetLevel(options.levels);
+  const Far::TopologyLevel& finest = refiner.GetLevel(levels);
   std::vector<Point> limit;
-  if (options.limit && options.levels > 0) {
+  if (limit_surface && levels > 0) {
     limit.resize(size_t(finest.GetNumVertices()));
     Point* dst = limit.data();
     primvar.Limit(src, dst);
     src = limit.data();
   }
+  out.resize(size_t(finest.GetNumVertices()));
+  for (size_t v = 0; v < out.size(); ++v) out[v] = {float(src[v].x), float(src[v].y), float(src[v].z)};
+}
 
-  TexturedMesh result;
-  PolygonMesh& out = result.mesh;
-  out.positions.resize(size_t(finest.GetNumVertices()));
-  for (size_t v = 0; v < out.positions.size(); ++v) out.positions[v] = {float(src[v].x), float(src[v].y), float(src[v].z)};
+// The finest level's faces.
+void finest_faces(const OpenSubdiv::Far::TopologyRefiner& refiner, PolygonMesh& out) {
+  const OpenSubdiv::Far::TopologyLevel& finest = refiner.GetLevel(refiner.GetMaxLevel());
   out.face_start.reserve(size_t(finest.GetNumFaces()) + 1);
   out.face_vertices.reserve(size_t(finest.GetNumFaceVertices()));
   for (int f = 0; f < finest.GetNumFaces(); ++f) {
-    const Far::ConstIndexArray corners = finest.GetFaceVertices(f);
+    const OpenSubdiv::Far::ConstIndexArray corners = finest.GetFaceVertices(f);
     for (int i = 0; i < corners.size(); ++i) out.face_vertices.push_back(corners[i]);
     out.face_start.push_back(int32_t(out.face_vertices.size()));
   }
+}
+
+// Refines the mesh and, if given, its per-corner texture coordinates and per-face
+// materials (empty: none).
+TexturedMesh refine(const PolygonMesh& mesh, std::span<const TexCoord> texcoords, std::span<const int32_t> face_material,
+                    const SubdivideOptions& options) {
+  using namespace OpenSubdiv;
+  const std::unique_ptr<Far::TopologyRefiner> refiner = refine_topology(mesh, texcoords, options);
+  TexturedMesh result;
+  PolygonMesh& out = result.mesh;
+  interpolate_positions(*refiner, options.limit, mesh.positions, out.positions);
+  finest_faces(*refiner, out);
+  const Far::TopologyLevel& finest = refiner->GetLevel(options.levels);
+  Far::PrimvarRefiner primvar(*refiner);
   if (!texcoords.empty()) {
     // Bilinear face-varying values have their limit where they are refined to.
     std::vector<Uv> uv(size_t(refiner->GetNumFVarValuesTotal(0)));
@@ -143,6 +164,24 @@ TexturedMesh subdivide(const TexturedMesh& mesh, const SubdivideOptions& options
   TexturedMesh result = refine(mesh.mesh, mesh.appearance.texcoords, mesh.appearance.face_material, options);
   result.appearance.materials = mesh.appearance.materials;
   return result;
+}
+
+struct CatmullClark::Refiner {
+  std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> topology;
+  bool limit = true;
+};
+
+CatmullClark::CatmullClark(const PolygonMesh& control, const SubdivideOptions& options)
+    : refiner_(new Refiner{refine_topology(control, {}, options), options.limit}) {
+  finest_faces(*refiner_->topology, faces_);
+}
+
+CatmullClark::~CatmullClark() = default;
+
+PolygonMesh CatmullClark::refine(std::span<const Vec3> control_positions) const {
+  PolygonMesh out = faces_;
+  interpolate_positions(*refiner_->topology, refiner_->limit, control_positions, out.positions);
+  return out;
 }
 
 } // namespace meander

@@ -60,6 +60,23 @@ public:
     if (!nodes_.empty()) within(0, 0, f);
   }
 
+  // Calls f(i) for every triangle i whose box overlaps `box`, on the calling thread.
+  template <class F> void for_each_overlapping(const Box& box, F&& f) const {
+    if (nodes_.empty() || !nodes_[0].box.overlaps(box)) return;
+    int32_t stack[128], top = 0; // depth: 30 Morton bits, then halvings of at most 2^31 items
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[size_t(stack[--top])];
+      if (node.count > 0) {
+        for (int32_t a = node.first; a < node.first + node.count; ++a)
+          if (item_boxes_[size_t(a)].overlaps(box)) f(items_[size_t(a)]);
+        continue;
+      }
+      for (const int32_t child : {node.first, node.first + 1})
+        if (nodes_[size_t(child)].box.overlaps(box)) stack[top++] = child;
+    }
+  }
+
 private:
   // Above this depth the descent forks (a few thousand tasks at most); below it the
   // work per task is too small to pay for a fork.

@@ -1,6 +1,7 @@
 #include "meander/wire.h"
 
 #include "meander/error.h"
+#include "meander/pipeline.h"
 #include "meander/printability.h"
 #include "meander/subdivide.h"
 
@@ -8,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace meander {
@@ -465,9 +467,10 @@ namespace {
 // diagonal whose triangles' area normals agree best (as CGAL's triangulate_faces does),
 // so that every writer, our check and a slicer see the same, better, triangles instead
 // of each fanning from the first corner.
-PolygonMesh split_quads(PolygonMesh mesh) {
+// `mesh` gives the faces, `positions` their corners' places.
+PolygonMesh split_quads(const PolygonMesh& mesh, std::vector<Vec3> positions) {
   PolygonMesh out;
-  out.positions = std::move(mesh.positions);
+  out.positions = std::move(positions);
   out.face_vertices.reserve(size_t(mesh.num_faces()) * 6);
   out.face_start.reserve(size_t(mesh.num_faces()) * 2 + 1);
   for (int32_t f = 0; f < mesh.num_faces(); ++f) {
@@ -492,7 +495,7 @@ PolygonMesh split_quads(PolygonMesh mesh) {
 
 } // namespace
 
-PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
+VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
   auto unit = [](double v) { return v >= 0 && v <= 1; };
   if (!unit(options.s) || !unit(options.t))
     throw UsageError("--s and --t must be between 0 and 1 (got s=" + std::to_string(options.s) + ", t=" + std::to_string(options.t) + ")");
@@ -590,16 +593,25 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,
   // right above, right below), which makes the faces point out of the slab.
   const int32_t width = ribbon ? 2 : 4;
-  PolygonMesh control;
-  control.positions.reserve(left.size() * size_t(width));
-  for (size_t r = 0; r < left.size(); ++r) {
-    if (ribbon) {
-      control.positions.insert(control.positions.end(), {left[r], right[r]});
-    } else {
-      const Vec3 h = up[r] * half_thickness(r);
-      control.positions.insert(control.positions.end(), {left[r] - h, left[r] + h, right[r] + h, right[r] - h});
+  // The clearing rounds' factors (below): of the thickness, and of the width about the rung's midpoint.
+  std::vector<float> thinned(automatic ? left.size() : 0, 1.0f), narrowed(thinned.size(), 1.0f);
+  auto control_positions = [&] {
+    std::vector<Vec3> positions;
+    positions.reserve(left.size() * size_t(width));
+    for (size_t r = 0; r < left.size(); ++r) {
+      if (ribbon) {
+        positions.insert(positions.end(), {left[r], right[r]});
+      } else {
+        const Vec3 h = up[r] * (half_thickness(r) * (automatic ? thinned[r] : 1.0f));
+        const float n = automatic ? narrowed[r] : 1.0f;
+        const Vec3 mid = (left[r] + right[r]) * 0.5f, l = mid + (left[r] - mid) * n, rr = mid + (right[r] - mid) * n;
+        positions.insert(positions.end(), {l - h, l + h, rr + h, rr - h});
+      }
     }
-  }
+    return positions;
+  };
+  PolygonMesh control;
+  control.positions = control_positions();
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const int32_t first = 2 * cycle.cycle_start[size_t(c)], rungs = 2 * cycle.cycle_start[size_t(c) + 1] - first;
     // Where a Moebius cycle closes, left meets right: a ribbon's rung is reversed, a
@@ -608,7 +620,76 @@ PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, con
   }
   // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
   // better part of the time at 50k faces) only to copy it.
-  return split_quads(options.levels == 0 ? control : subdivide(control, {.levels = options.levels, .limit = true}));
+  PolygonMesh wire;
+  if (options.levels == 0) {
+    wire = split_quads(control, control.positions);
+  } else {
+    PolygonMesh smooth = subdivide(control, {.levels = options.levels, .limit = true});
+    wire = split_quads(smooth, std::move(smooth.positions));
+  }
+
+  // The limits above are local estimates, and the smoothing moves what they measured.
+  // An automatic thickness is then made good where the result still crosses itself:
+  // around each crossing the slabs are halved (and from the second time on, narrowed
+  // about their middle: where the strip bends across a sharp crease its sides fold
+  // however thin it is), the wire smoothed again and searched again where it changed,
+  // for a few rounds. What does not clear is reported as it is: mostly a surface that
+  // crosses itself, or slivers so flat that their slab folds in its own plane.
+  // Every control quad of a connector refines into 4^levels quads (OpenSubdiv numbers
+  // a face's children consecutively), each split in 2 triangles.
+  bool clear = false;
+  if (automatic && options.levels <= 8) {
+    const int32_t faces_per_rung = width * 2 << (2 * options.levels);
+    auto step = [&](size_t rung, int delta) {
+      const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
+                            cycle.cycle_start.begin() - 1);
+      const int64_t first = 2 * int64_t(cycle.cycle_start[c]), rungs = 2 * int64_t(cycle.cycle_start[c + 1]) - first;
+      return size_t(first + ((int64_t(rung) - first + delta) % rungs + rungs) % rungs);
+    };
+    std::vector<uint8_t> changed; // per face of the wire: empty = search it all
+    // Kept only while rounds are needed: the refined topology of every level is large.
+    std::optional<CatmullClark> smoothing;
+    size_t fewest = SIZE_MAX; // crossing faces, and the rounds since they were a tenth fewer
+    for (int round = 0, stalled = 0; round < 8 && stalled < 2; ++round) {
+      const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed);
+      if (crossing.empty()) {
+        clear = true;
+        break;
+      }
+      stalled = double(crossing.size()) < 0.9 * double(fewest) ? 0 : stalled + 1;
+      fewest = std::min(fewest, crossing.size());
+      // A connector's limit surface depends on its own two rungs and their neighbours.
+      std::vector<uint8_t> thin(thinned.size());
+      for (const int32_t f : crossing) {
+        const size_t rung = size_t(f / faces_per_rung);
+        for (int d = -1; d <= 2; ++d) thin[step(rung, d)] = 1;
+      }
+      // A rung halved four times and still crossing is given up (a crossing surface or a
+      // flat sliver, which no thickness clears): the rounds end when only those are left.
+      changed.assign(size_t(wire.num_faces()), 0);
+      bool any = false;
+      for (size_t r = 0; r < thinned.size(); ++r) {
+        if (!thin[r] || thinned[r] < 0.1f) continue;
+        any = true;
+        if (thinned[r] < 1) narrowed[r] *= 0.7f;
+        thinned[r] *= 0.5f;
+        for (int d = -2; d <= 2; ++d) {
+          const auto first = changed.begin() + int64_t(step(r, d)) * faces_per_rung;
+          std::fill(first, first + faces_per_rung, uint8_t(1));
+        }
+      }
+      if (!any) break;
+      control.positions = control_positions();
+      if (options.levels == 0) {
+        wire = split_quads(control, control.positions);
+      } else {
+        if (!smoothing) smoothing.emplace(control, SubdivideOptions{.levels = options.levels, .limit = true});
+        PolygonMesh smooth = smoothing->refine(control.positions);
+        wire = split_quads(smooth, std::move(smooth.positions));
+      }
+    }
+  }
+  return {std::move(wire), clear};
 }
 
 } // namespace meander

@@ -201,6 +201,48 @@ TEST(Printability, ReportDoesNotDependOnTheNumberOfThreads) {
   EXPECT_EQ(printability_json(one), printability_json(all));
 }
 
+// Every face of an intersecting pair, and no other: the same set a test of every pair of
+// faces on its own gives. Restricted to some faces, only pairs with one of them.
+TEST(Printability, SelfIntersectingFacesAreThoseOfIntersectingPairs) {
+  const PolygonMesh m = three_overlapping_spheres(200);
+  std::vector<uint8_t> expected(size_t(m.num_faces()));
+  std::vector<std::array<int32_t, 2>> pairs;
+  const PrintabilityReport report = check_printability(m, {.thickness = false});
+  for (int32_t i = 0; i < m.num_faces(); ++i)
+    for (int32_t j = i + 1; j < m.num_faces(); ++j) {
+      PolygonMesh pair;
+      pair.positions = m.positions;
+      pair.add_face(m.face(i));
+      pair.add_face(m.face(j));
+      if (check_printability(pair, {.self_intersections = true, .thickness = false}).self_intersecting) {
+        expected[size_t(i)] = expected[size_t(j)] = 1;
+        pairs.push_back({i, j});
+      }
+    }
+  std::vector<int32_t> all;
+  for (int32_t f = 0; f < m.num_faces(); ++f)
+    if (expected[size_t(f)]) all.push_back(f);
+  ASSERT_FALSE(pairs.empty());
+  EXPECT_EQ(self_intersecting_faces(m), all);
+  EXPECT_EQ(pairs.front(), report.first_intersection);
+
+  // Flag the faces of the first sphere only: the pairs within the other two are not tested.
+  std::vector<uint8_t> among(size_t(m.num_faces()));
+  const int32_t per_sphere = m.num_faces() / 3;
+  std::fill(among.begin(), among.begin() + per_sphere, uint8_t(1));
+  std::vector<uint8_t> restricted(size_t(m.num_faces()));
+  for (const auto& [i, j] : pairs)
+    if (i < per_sphere || j < per_sphere) restricted[size_t(i)] = restricted[size_t(j)] = 1;
+  std::vector<int32_t> some;
+  for (int32_t f = 0; f < m.num_faces(); ++f)
+    if (restricted[size_t(f)]) some.push_back(f);
+  EXPECT_EQ(self_intersecting_faces(m, among), some);
+  EXPECT_LT(some.size(), all.size());
+  // Flagging every face is the whole search; one sphere alone crosses nothing.
+  EXPECT_EQ(self_intersecting_faces(m, std::vector<uint8_t>(size_t(m.num_faces()), 1)), all);
+  EXPECT_TRUE(self_intersecting_faces(sphere(200)).empty());
+}
+
 // Cubes side by side share a face's plane: touching faces of separate components count.
 TEST(Printability, CubesTouchingAlongAFaceIntersect) {
   PolygonMesh m = cube_at({0, 0, 0});

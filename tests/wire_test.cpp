@@ -66,7 +66,7 @@ TEST_P(WireOnShapes, ConstantWireIsOneTorusPerCycleWithoutSelfIntersection) {
 
 TEST_P(WireOnShapes, VariableWireIsOneTorusPerCycle) {
   const CurveResult curve = curve_of(GetParam().make());
-  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
+  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 1}).mesh;
   expect_tori(wire, curve.cycle.num_cycles());
   EXPECT_FALSE(check_printability(wire, {.thickness = false}).self_intersecting);
 }
@@ -74,7 +74,7 @@ TEST_P(WireOnShapes, VariableWireIsOneTorusPerCycle) {
 TEST_P(WireOnShapes, RibbonsAreBandsWithTwoBoundaryLoopsPerCycle) {
   const CurveResult curve = curve_of(GetParam().make());
   for (const PolygonMesh& ribbon : {automatic(curve, WireShape::ribbon).mesh,
-                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1})}) {
+                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).mesh}) {
     const MeshReport r = inspect(ribbon);
     EXPECT_EQ(r.non_manifold_edges, 0);
     EXPECT_EQ(r.non_manifold_vertices, 0);
@@ -96,7 +96,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, WireOnShapes,
 // faces, every ribbon face's normal points away from the centre.
 TEST(Wire, RibbonFacesPointOutOfTheSurface) {
   const CurveResult curve = curve_of(sphere(300));
-  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0});
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0}).mesh;
   for (int32_t f = 0; f < ribbon.num_faces(); ++f) {
     const auto v = ribbon.face(f);
     ASSERT_EQ(v.size(), 3u);
@@ -115,7 +115,7 @@ TEST(Wire, AutomaticThicknessStaysBelowTheTrianglesAltitude) {
   PolygonMesh mesh = grid(400);
   for (Vec3& p : mesh.positions) p.x *= 8;
   const CurveResult curve = curve_of(mesh);
-  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 0});
+  const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 0}).mesh;
   ASSERT_EQ(wire.positions.size(), 8 * curve.cycle.order.size()); // two slab sections per triangle
   int limited = 0;
   for (size_t rung = 0; rung < 2 * curve.cycle.order.size(); ++rung) {
@@ -139,10 +139,24 @@ TEST(Wire, SlabsOnBothSidesOfAThinPlateStayApart) {
   // The shaped tree, as `meander wire --method variable` builds it: the rim's slivers fold
   // on the random one.
   const CurveResult curve = make_curve(repair(std::move(mesh), "plate").mesh, {.cycle = {.tree = TreeStrategy::shaped}});
-  EXPECT_FALSE(check_printability(variable_wire(curve.quads, curve.cycle, {.levels = 1}), {.thickness = false}).self_intersecting);
+  EXPECT_FALSE(check_printability(variable_wire(curve.quads, curve.cycle, {.levels = 1}).mesh, {.thickness = false}).self_intersecting);
   // An explicit thickness is used as given: this one runs into itself.
-  const PolygonMesh thick = variable_wire(curve.quads, curve.cycle, {.thickness = 0.04, .levels = 1});
+  const PolygonMesh thick = variable_wire(curve.quads, curve.cycle, {.thickness = 0.04, .levels = 1}).mesh;
   EXPECT_TRUE(check_printability(thick, {.thickness = false}).self_intersecting);
+}
+
+// `clear` is the search's verdict on the very mesh returned, and a report that takes it
+// says what its own search says; only a wire of automatic thickness is searched.
+TEST(Wire, ClearIsTheVerdictOfASearchOfTheResult) {
+  const CurveResult curve = curve_of(sphere(300));
+  const VariableWire automatic_wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
+  EXPECT_TRUE(automatic_wire.clear);
+  const PrintabilityReport searched = check_printability(automatic_wire.mesh, {.thickness = false});
+  EXPECT_FALSE(searched.self_intersecting);
+  EXPECT_EQ(printability_json(check_printability(automatic_wire.mesh, {.known_clear = true, .thickness = false})),
+            printability_json(searched));
+  EXPECT_FALSE(variable_wire(curve.quads, curve.cycle, {.thickness = 0.01, .levels = 1}).clear);
+  EXPECT_FALSE(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).clear);
 }
 
 // On a Moebius band the dual-of-Simplest cycle is the outline of a spanning tree's
@@ -151,7 +165,7 @@ TEST(Wire, CycleOnAMoebiusBandIsTwoSided) {
   const CurveResult curve = curve_of(moebius(120));
   ASSERT_EQ(curve.cycle.num_cycles(), 1);
   expect_tori(automatic(curve).mesh, 1, false);
-  const MeshReport ribbon = inspect(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0}));
+  const MeshReport ribbon = inspect(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 0}).mesh);
   EXPECT_EQ(ribbon.boundary_loops, 2);
   EXPECT_TRUE(ribbon.orientable);
 }
@@ -197,10 +211,10 @@ TEST(Wire, OneSidedCycleClosesWithAHalfTurn) {
     top.push_back(band(2 * std::numbers::pi * i / n, 0.3));
   }
   const Strip strip = triangle_strip(bottom, top, true);
-  const MeshReport ribbon = inspect(variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .levels = 0}));
+  const MeshReport ribbon = inspect(variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .levels = 0}).mesh);
   EXPECT_EQ(ribbon.boundary_loops, 1);
   EXPECT_FALSE(ribbon.orientable);
-  expect_tori(variable_wire(strip.quads, strip.cycle, {.levels = 1}), 1, false);
+  expect_tori(variable_wire(strip.quads, strip.cycle, {.levels = 1}).mesh, 1, false);
   for (int sides : {4, 5})
     expect_tori(constant_wire(strip.quads, strip.cycle, {.radius = 0.02, .sides = sides, .curve = {.samples = 2}}).mesh, 1, false);
 }
@@ -264,7 +278,7 @@ TEST(Wire, MaxRadiusOfCircles) {
 // (2 apex + p + n) / 4.
 TEST(Wire, ZeroSizedTrapezoidIsTheControlPoint) {
   const CurveResult curve = curve_of(torus(200));
-  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 0, .t = 0, .levels = 0});
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 0, .t = 0, .levels = 0}).mesh;
   const Polylines control = control_polygons(curve.quads, curve.cycle);
   ASSERT_EQ(size_t(ribbon.num_vertices()), 4 * control.points.size());
   for (size_t i = 0; i < control.points.size(); ++i)
@@ -275,7 +289,7 @@ TEST(Wire, ZeroSizedTrapezoidIsTheControlPoint) {
 // the surface, its area equal to the triangulated quad mesh's.
 TEST(Wire, FullSizedTrapezoidsCoverTheSurface) {
   const CurveResult curve = curve_of(sphere(300));
-  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 1, .t = 1, .levels = 0});
+  const PolygonMesh ribbon = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 1, .t = 1, .levels = 0}).mesh;
   auto area = [](const PolygonMesh& m) {
     double sum = 0;
     for (int32_t f = 0; f < m.num_faces(); ++f) {
@@ -299,7 +313,7 @@ TEST(Wire, ParallelogramStripStaysStraight) {
     top.push_back({float(i) + 0.3f, 1, 0});
   }
   const Strip strip = triangle_strip(bottom, top, false);
-  const PolygonMesh ribbon = variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .s = 0.5, .t = 0.4, .levels = 0});
+  const PolygonMesh ribbon = variable_wire(strip.quads, strip.cycle, {.shape = WireShape::ribbon, .s = 0.5, .t = 0.4, .levels = 0}).mesh;
   // Away from the ends (where this open strip is closed up arbitrarily) every rail point
   // of one side lies on one line parallel to the strip.
   for (int side = 0; side < 2; ++side) {

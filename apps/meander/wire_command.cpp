@@ -4,6 +4,7 @@
 
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/pipeline.h"
 #include "meander/printability.h"
 #include "meander/render.h"
 #include "meander/wire.h"
@@ -59,6 +60,7 @@ void run_wire(const WireArgs& a) {
 
   PolygonMesh wire;
   double radius_used = 0;
+  bool known_clear = false;
   if (constant) {
     ConstantWire made =
         constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
@@ -66,11 +68,13 @@ void run_wire(const WireArgs& a) {
     wire = std::move(made.mesh);
     radius_used = made.radius;
   } else {
-    wire = about_input(a.input, [&] { return variable_wire(curve.quads, curve.cycle, variable); });
+    VariableWire made = about_input(a.input, [&] { return variable_wire(curve.quads, curve.cycle, variable); });
+    wire = std::move(made.mesh);
+    known_clear = made.clear;
   }
   log.lap("wire");
 
-  const PrintabilityReport report = check_printability(wire, {.thickness = shape == WireShape::wire});
+  const PrintabilityReport report = check_printability(wire, {.known_clear = known_clear, .thickness = shape == WireShape::wire});
   log.lap("report");
   write_mesh(wire, a.output);
   log.lap("write wire");
@@ -90,6 +94,16 @@ void run_wire(const WireArgs& a) {
   }
   std::string summary = a.output + ": " + printability_summary(report);
   if (constant) summary += " Radius " + std::to_string(radius_used) + (radius ? "." : " (auto).");
+  if (report.self_intersecting) {
+    // Say when no wire that follows the surface could be clear: the surface's own
+    // triangles (the cycle's, as the wire follows them) cross each other.
+    const std::vector<int32_t> crossing = self_intersecting_faces(cycle_triangles(curve.quads, curve.cycle));
+    if (!crossing.empty())
+      summary += " Note: the surface itself crosses itself (" + std::to_string(crossing.size()) +
+                 " of the cycle's triangles, e.g. number " + std::to_string(crossing.front()) +
+                 " of those `meander curve --triangles` writes with these options): a wire that follows it cannot be "
+                 "clear there.";
+  }
   std::fprintf(stderr, "%s\n", summary.c_str());
   if (!a.png.empty()) log.note("wrote " + picture_written);
 }

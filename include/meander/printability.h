@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct PrintabilityOptions {
   // for float inputs on a coarse lattice, such as axis-aligned and touching
   // configurations; otherwise wrong only within ~1e-16 relative of a tie).
   bool self_intersections = true;
+  // The caller has searched this very mesh with self_intersecting_faces() and found
+  // nothing (VariableWire::clear): reported as checked and clear without a second search.
+  bool known_clear = false;
   // Estimate the minimum thickness by casting a ray from every vertex inward (closed
   // meshes only: an open sheet has no inside). Embree finds the nearest triangle hit, in
   // float (relative error ~1e-7).
@@ -89,6 +93,12 @@ struct PrintabilityReport {
 // 1.5 s per million triangles on two cores, most of it in touching fresh memory
 // (docs/benchmarks.md).
 PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options = {});
+
+// Every face that meets another where the mesh does not join them (the
+// self-intersections check_printability looks for; zero-area triangles left out),
+// sorted. With `among` (a flag per face), only the pairs with at least one flagged face
+// are tested: after a local change, what may have changed. O(n log n).
+std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among = {});
 
 // The report as a JSON object (2-space indented, keys in a fixed order; infinite or
 // unchecked figures are null): triangles, watertight, volume, min_thickness,

@@ -4,6 +4,10 @@
 #include "meander/mesh.h"
 #include "meander/textured_mesh.h"
 
+#include <memory>
+#include <span>
+#include <vector>
+
 namespace meander {
 
 struct SubdivideOptions {
@@ -24,5 +28,27 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options =
 // drawings meet where the faces meet (duotone tiles show no seams). Each refined face
 // keeps its parent's material. O(output).
 TexturedMesh subdivide(const TexturedMesh& mesh, const SubdivideOptions& options = {});
+
+// Catmull-Clark refinement of one control topology, kept for new positions: refining the
+// topology is most of OpenSubdiv's work, and a caller that moves the control points
+// again and again (variable_wire's clearing rounds) pays for it once. Faces come out as
+// subdivide() makes them: the finest level's, each control face's children consecutive.
+class CatmullClark {
+public:
+  // Throws as subdivide() does. `control`'s positions are not used.
+  CatmullClark(const PolygonMesh& control, const SubdivideOptions& options);
+  ~CatmullClark();
+  CatmullClark(const CatmullClark&) = delete;
+  CatmullClark& operator=(const CatmullClark&) = delete;
+
+  // The refined mesh for these positions of the control vertices: subdivide() of the
+  // control mesh moved there. O(output).
+  PolygonMesh refine(std::span<const Vec3> control_positions) const;
+
+private:
+  struct Refiner;
+  std::unique_ptr<Refiner> refiner_;
+  PolygonMesh faces_; // the finest level's faces, no positions
+};
 
 } // namespace meander

@@ -85,17 +85,29 @@ struct VariableWireOptions {
   WireShape shape = WireShape::wire;
   double s = 0.6, t = 0.6;
   // Wire only: the slab's thickness perpendicular to the surface, centred on it, in mesh
-  // units; 0 = half the ribbon's local width, so that it too follows the triangles.
+  // units; 0 = automatic: half the ribbon's local width, so that it too follows the
+  // triangles, less where the slabs would run into each other (variable_wire).
   double thickness = 0;
   int levels = 2; // Catmull-Clark levels (OpenSubdiv), >= 0; 0 gives the control mesh
+};
+
+struct VariableWire {
+  PolygonMesh mesh;
+  // The mesh was searched for self-intersections after its last change and none was
+  // found (a wire of automatic thickness; see variable_wire): a report can take this
+  // instead of searching again (PrintabilityOptions::known_clear).
+  bool clear = false;
 };
 
 // Trapezoids joined by quad connectors into a closed quad strip (ribbon); for wires each
 // trapezoid is extruded along the surface normal into a prism and the prisms joined by
 // hexahedral connectors into a closed toroidal quad mesh; then smoothed with
-// Catmull-Clark (subdivide.h). Control mesh: per triangle of the cycle 2 quads (ribbon)
-// or 8 quads (wire); each level multiplies the quads by 4. Throws UsageError for s or t
-// outside [0, 1], thickness < 0 or levels < 0.
-PolygonMesh variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
+// Catmull-Clark (subdivide.h) and each quad split in two triangles. Control mesh: per
+// triangle of the cycle 2 quads (ribbon) or 8 quads (wire); each level multiplies the
+// quads by 4. A wire of automatic thickness is then searched for self-intersections
+// (printability.h), and where it has some its slabs are thinned (then also narrowed)
+// around them and smoothed again, a few rounds while that helps. Throws UsageError for
+// s or t outside [0, 1], thickness < 0 or levels < 0.
+VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
 
 } // namespace meander
