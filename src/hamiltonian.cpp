@@ -53,20 +53,31 @@ double triangle_shape(Vec3 a, Vec3 b, Vec3 c) {
   return squares > 0 ? 2 * std::sqrt(3.0) * norm(cross(b - a, c - a)) / squares : 0.0;
 }
 
-// The worse shape of quad q's two triangles under diagonal d.
+// The worse shape of quad q's two triangles under diagonal d, negated for a triangle
+// that faces against the quad's vector area: a concave quad (a scan's needle moves a
+// face centre past the edge's end) split along its outer diagonal folds one triangle
+// back over the other, and the curve, the ribbon and the slabs with it.
 double split_shape(const QuadMesh& m, int32_t q, uint8_t d) {
   const auto& c = m.quads[size_t(q)];
   auto at = [&](int k) { return m.positions[size_t(c[size_t(k & 3)])]; };
-  return std::min(triangle_shape(at(d), at(d + 1), at(d + 2)), triangle_shape(at(d + 2), at(d + 3), at(d)));
+  const Vec3 area = cross(at(2) - at(0), at(3) - at(1));
+  auto shape = [&](Vec3 a, Vec3 b, Vec3 e) {
+    const double s = triangle_shape(a, b, e);
+    return dot(cross(b - a, e - a), area) < 0 ? -s : s;
+  };
+  return std::min(shape(at(d), at(d + 1), at(d + 2)), shape(at(d + 2), at(d + 3), at(d)));
 }
 
 // The shaped tree's rank of flipping quad q from diagonal d: how much the flip improves
 // the worse of its triangles (a gain of 1 ranks 0, a loss of 1 ranks 2 * steps), plus a
 // dither in [0, 1) from a hash of the quad and the seed, so that quads of about the same
-// gain mix at random instead of splitting at a hard threshold.
+// gain mix at random instead of splitting at a hard threshold. A flip that folds a
+// triangle over takes the last rank: the tree uses it only to stay connected.
 uint8_t flip_rank(const QuadMesh& m, int32_t q, uint8_t d, uint64_t seed) {
   constexpr double steps = (Graph::max_rank - 1) / 2.0;
-  const double gain = split_shape(m, q, d ^ 1) - split_shape(m, q, d);
+  const double flipped = split_shape(m, q, d ^ 1);
+  if (flipped < 0) return Graph::max_rank - 1;
+  const double gain = flipped - split_shape(m, q, d);
   const double dither = double(Random(seed ^ (uint64_t(q) * 0xd1b54a32d192ed03ULL)).next() >> 11) * 0x1p-53;
   return uint8_t(std::clamp(std::floor(steps * (1 - gain) + dither), 0.0, double(Graph::max_rank - 1)));
 }
