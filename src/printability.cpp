@@ -238,6 +238,15 @@ bool degenerate(const PolygonMesh& mesh, const std::array<int32_t, 3>& t) {
   return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
+// Which triangles have zero area: left out of the intersection search.
+std::vector<uint8_t> degenerate_triangles(const PolygonMesh& mesh, const Triangles& tris) {
+  std::vector<uint8_t> flags(tris.corners.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, flags.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) flags[i] = degenerate(mesh, tris.corners[i]);
+  });
+  return flags;
+}
+
 // The first intersecting pair in the order of PrintabilityReport::first_intersection:
 // the least (i, j), i < j, in lexicographic order. Pairs are met in parallel in any
 // order; each one not below the best found so far is dismissed untested, and the best
@@ -455,10 +464,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
   report.triangles = int64_t(tris.corners.size());
   measure_components(mesh, tris, topology, report);
 
-  std::vector<uint8_t> skip(tris.corners.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) skip[i] = degenerate(mesh, tris.corners[i]);
-  });
+  const std::vector<uint8_t> skip = degenerate_triangles(mesh, tris);
   report.degenerate_triangles = int32_t(std::count(skip.begin(), skip.end(), 1));
   if (!options.self_intersections && !options.thickness) return report;
 
@@ -482,10 +488,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
 
 std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among) {
   const Triangles tris = fan(mesh);
-  std::vector<uint8_t> skip(tris.corners.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, skip.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) skip[i] = degenerate(mesh, tris.corners[i]);
-  });
+  const std::vector<uint8_t> skip = degenerate_triangles(mesh, tris);
   std::vector<uint8_t> hit(tris.corners.size());
   if (among.empty()) {
     mark_intersecting(mesh, tris, skip, TriangleBvh(mesh.positions, tris.corners), hit);

@@ -638,8 +638,8 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // Every control quad of a connector refines into 4^levels quads (OpenSubdiv numbers
   // a face's children consecutively), each split in 2 triangles.
   bool clear = false;
-  if (automatic && options.levels <= 8) {
-    const int32_t faces_per_rung = width * 2 << (2 * options.levels);
+  if (automatic) {
+    const int64_t faces_per_rung = int64_t(width) * 2 << (2 * options.levels);
     auto step = [&](size_t rung, int delta) {
       const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
                             cycle.cycle_start.begin() - 1);
