@@ -285,6 +285,23 @@ TEST(Gltf, RefusesMalformedFilesWithTheFileName) {
             past.string() + ": mesh 0 primitive 0: POSITION: accessor 0: reaches past the end of its buffer view");
 }
 
+// A buffer whose URI names a folder (a fuzzer's find): tinygltf's own reader took the
+// folder's stream for 2^63 bytes and asked for that much memory.
+TEST(Gltf, BufferUriNamingAFolderIsRefused) {
+  output_dir();
+  for (const char* uri : {"../", ".", "missing.bin"}) {
+    const fs::path path = write_file("folder_buffer.gltf", std::string(R"({
+      "asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36, "uri": ")") + uri + R"("}]
+    })");
+    const std::string message = message_of<InputError>([&] { read_mesh(path); });
+    EXPECT_THAT(message, StartsWith(path.string() + ": ")) << uri;
+    EXPECT_THAT(message, HasSubstr(std::string(uri) == "missing.bin" ? "not found" : "not a regular file")) << message;
+  }
+}
+
 TEST(Glb, KhronosValidatorFindsNoErrorsOrWarnings) {
   if (!test::gltf_validator_installed())
     GTEST_SKIP() << "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH";

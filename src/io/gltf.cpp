@@ -21,6 +21,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <new>
 #include <optional>
@@ -138,6 +139,27 @@ private:
   int components_ = 0, component_size_ = 0, type_ = 0;
   bool normalized_ = false;
 };
+
+// The file reader tinygltf calls for a buffer or an image given by a relative URI. Its
+// own opens a folder as a stream and takes the stream's failed position for a size of
+// 2^63 bytes; this one reads regular files only.
+bool read_external_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::error_code ec;
+  const bool regular = fs::is_regular_file(path, ec);
+  const uintmax_t size = regular ? fs::file_size(path, ec) : 0;
+  std::ifstream in;
+  if (regular && !ec) in.open(path, std::ios::binary);
+  if (!in.is_open()) {
+    if (err) *err += regular ? "cannot open it" : "not a regular file";
+    return false;
+  }
+  out->resize(size_t(size));
+  if (!in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) {
+    if (err) *err += "cannot read it";
+    return false;
+  }
+  return true;
+}
 
 // The image loader tinygltf calls for every image: Meander's decoder, RGBA8 always.
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
@@ -490,6 +512,9 @@ TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
   const std::string name = path.string();
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(load_image, nullptr);
+  loader.SetFsCallbacks({.FileExists = tinygltf::FileExists, .ExpandFilePath = tinygltf::ExpandFilePath,
+                         .ReadWholeFile = read_external_file, .WriteWholeFile = tinygltf::WriteWholeFile,
+                         .user_data = nullptr});
   tinygltf::Model model;
   std::string error, warnings;
   if (bytes.size() > UINT32_MAX) fail_input(name, "file too large for glTF (over 4 GiB)");
