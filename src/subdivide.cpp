@@ -77,9 +77,9 @@ std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> refine_topology(const PolygonM
 }
 
 // The finest level's positions for these control positions, on the limit surface if
-// `limit`.
+// `limit_surface`.
 void interpolate_positions(const OpenSubdiv::Far::TopologyRefiner& refiner, bool limit_surface,
-                      std::span<const Vec3> control, std::vector<Vec3>& out) {
+                           std::span<const Vec3> control, std::vector<Vec3>& out) {
   using namespace OpenSubdiv;
   const int levels = refiner.GetMaxLevel();
   std::vector<Point> points(size_t(refiner.GetNumVerticesTotal()));

@@ -619,14 +619,16 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
     connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
   }
   // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
-  // better part of the time at 50k faces) only to copy it.
-  PolygonMesh wire;
-  if (options.levels == 0) {
-    wire = split_quads(control, control.positions);
-  } else {
-    PolygonMesh smooth = subdivide(control, {.levels = options.levels, .limit = true});
-    wire = split_quads(smooth, std::move(smooth.positions));
-  }
+  // better part of the time at 50k faces) only to copy it. The clearing rounds below keep
+  // the refined topology in `smoothing` once they need it (only then: it is large).
+  const SubdivideOptions smoothing_options{.levels = options.levels, .limit = true};
+  std::optional<CatmullClark> smoothing;
+  auto smoothed = [&] {
+    if (options.levels == 0) return split_quads(control, control.positions);
+    PolygonMesh smooth = smoothing ? smoothing->refine(control.positions) : subdivide(control, smoothing_options);
+    return split_quads(smooth, std::move(smooth.positions));
+  };
+  PolygonMesh wire = smoothed();
 
   // The limits above are local estimates, and the smoothing moves what they measured.
   // An automatic thickness is then made good where the result still crosses itself:
@@ -647,8 +649,6 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
       return size_t(first + ((int64_t(rung) - first + delta) % rungs + rungs) % rungs);
     };
     std::vector<uint8_t> changed; // per face of the wire: empty = search it all
-    // Kept only while rounds are needed: the refined topology of every level is large.
-    std::optional<CatmullClark> smoothing;
     size_t fewest = SIZE_MAX; // crossing faces, and the rounds since they were a tenth fewer
     for (int round = 0, stalled = 0; round < 8 && stalled < 2; ++round) {
       const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed);
@@ -680,13 +680,8 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
       }
       if (!any) break;
       control.positions = control_positions();
-      if (options.levels == 0) {
-        wire = split_quads(control, control.positions);
-      } else {
-        if (!smoothing) smoothing.emplace(control, SubdivideOptions{.levels = options.levels, .limit = true});
-        PolygonMesh smooth = smoothing->refine(control.positions);
-        wire = split_quads(smooth, std::move(smooth.positions));
-      }
+      if (!smoothing && options.levels > 0) smoothing.emplace(control, smoothing_options);
+      wire = smoothed();
     }
   }
   return {std::move(wire), clear};
