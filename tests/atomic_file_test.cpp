@@ -20,7 +20,10 @@ namespace fs = std::filesystem;
 
 // The size of the first temporary file of `target` in its folder, or 0.
 uintmax_t temporary_size(const fs::path& target) {
-  const std::string prefix = "." + target.filename().string() + ".tmp.";
+  // Appended rather than "." + name, which GCC 12 warns about wrongly (-Wrestrict).
+  std::string prefix = ".";
+  prefix += target.filename().string();
+  prefix += ".tmp.";
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(target.parent_path()))
     if (entry.path().filename().string().starts_with(prefix)) return entry.file_size(error);

@@ -33,6 +33,28 @@ TEST(IoObj, AcceptsEveryIndexForm) {
   EXPECT_EQ(faces_of(m), (std::vector<int32_t>{0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 1, 3, 2}));
 }
 
+// Indices are read eight bytes at a time: every digit count from 1 to 18 (by leading
+// zeros), each end of a number (space, tab, CR, LF, '/', '#', the file's end) and an
+// index within the last eight bytes of the file must give the same faces.
+TEST(IoObj, IndicesOfEveryLengthAndEveryEnd) {
+  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
+  std::vector<int32_t> expected;
+  const char* ends[] = {" ", "\t", "/1 ", "/1/1\t", "//1 "};
+  for (int digits = 1; digits <= 18; ++digits)
+    for (int end = 0; end < 5; ++end) {
+      text += "f";
+      for (int corner = 1; corner <= 3; ++corner) {
+        text += " " + std::string(digits - 1, '0') + char('0' + corner);
+        text += corner == 3 ? (end % 2 ? "\r\n" : "# note\n") : ends[end];
+      }
+      expected.insert(expected.end(), {0, 1, 2});
+    }
+  text += "f 3 2 1";
+  expected.insert(expected.end(), {2, 1, 0});
+  EXPECT_EQ(faces_of(read_text("lengths.obj", text)), expected);
+  EXPECT_EQ(faces_of(read_text("lengths_end.obj", text.substr(0, text.size() - 1) + "00000001")), expected);
+}
+
 // A byte order mark, CRLF line ends, tabs, comments after statements, a '+' sign,
 // extra vertex components (w, colours), statements Meander does not use, and a stray
 // line like the one beveledcube.obj ends with.

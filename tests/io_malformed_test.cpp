@@ -73,6 +73,7 @@ INSTANTIATE_TEST_SUITE_P(
                   ":4: bad vertex index '1234567890123456789'"},
         Malformed{"index_letters.obj", three_vertices + "f 1 2 x\n", ":4: bad vertex index 'x'"},
         Malformed{"index_suffix.obj", three_vertices + "f 1 2 3x\n", ":4: bad vertex index '3x'"},
+        Malformed{"index_suffix_long.obj", three_vertices + "f 1 2 0000003x 1\n", ":4: bad vertex index '0000003x'"},
         Malformed{"two_vertices.obj", three_vertices + "f 1 2\n", ":4: face with 2 vertices (at least 3 needed)"},
         // Positive indices may point forward, so they are checked at the end, where the
         // largest one is reported on its line.
