@@ -1,13 +1,18 @@
 #include "meander/curve.h"
 
+#include "io/formats.h"
 #include "io/polyline_stream.h"
 #include "meander/error.h"
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <optional>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <string>
+#include <thread>
+#include <utility>
 
 namespace meander {
 
@@ -43,12 +48,6 @@ std::array<float, 4> bspline_weights(float u) {
 
 namespace {
 
-// Uniform cubic B-spline at u in [0,1), for the segment between p1 and p2.
-Vec3 bspline(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, float u) {
-  const auto [b0, b1, b2, b3] = bspline_weights(u);
-  return p0 * b0 + p1 * b1 + p2 * b2 + p3 * b3;
-}
-
 // Centripetal Catmull-Rom (alpha = 1/2) between p1 and p2, by the Barry-Goldman
 // pyramid. Knot gaps get a floor so repeated control points (zero-area faces) do not
 // divide by zero; the segment then degenerates gracefully to a line.
@@ -68,7 +67,7 @@ namespace {
 
 // Points per control polygon segment: options.samples, or 1 for the control polygon
 // itself. Validates what smooth_curves documents before any memory or file is touched.
-int points_per_segment(int32_t control_points, const CurveOptions& options) {
+int points_per_segment(int64_t control_points, const CurveOptions& options) {
   if (options.samples < 1) throw UsageError("--samples must be at least 1 (got " + std::to_string(options.samples) + ")");
   const int k = options.smoothing == Smoothing::none ? 1 : options.samples;
   if (double(control_points) * k > 2147483647.0)
@@ -87,28 +86,40 @@ std::vector<int32_t> sampled_start(const std::vector<int32_t>& control_start, in
 // point(i), k points per segment. A point depends only on its segment's four control
 // points, so any range can be sampled on its own and gives the same floats: blocks of a
 // curve are sampled in parallel, and a streaming writer samples whatever block it writes.
+// This loop makes most of the points a 10M-triangle mesh writes (120M at 4 samples), so
+// the B-spline weights of the k sample positions are computed once, the smoothing is
+// chosen once per segment, and the control indices wrap by a comparison (a division per
+// control point showed in profiles).
 template <typename Point>
 void sample_range(const Point& point, int32_t n, int k, Smoothing smoothing, int64_t begin, int64_t end, Vec3* dst) {
   if (begin >= end) return;
-  auto at = [&](int64_t i) { return point(int32_t(i % n)); };
-  int64_t segment = begin / k;
+  std::vector<std::array<float, 4>> weights;
+  if (smoothing == Smoothing::bspline)
+    for (int j = 0; j < k; ++j) weights.push_back(bspline_weights(float(j) / float(k)));
+  const int64_t segment = begin / k;
   int j = int(begin % k);
-  Vec3 p0 = at(segment + n - 1), p1 = at(segment), p2 = at(segment + 1), p3 = at(segment + 2);
-  for (int64_t q = begin; q < end; ++q) {
+  Vec3 p0 = point(int32_t((segment + n - 1) % n)), p1 = point(int32_t(segment % n)),
+       p2 = point(int32_t((segment + 1) % n)), p3 = point(int32_t((segment + 2) % n));
+  int32_t next = int32_t((segment + 3) % n);
+  for (int64_t q = begin;;) {
+    const int64_t stop = std::min<int64_t>(end, q + (k - j));
     if (smoothing == Smoothing::none) {
-      *dst++ = p1;
+      for (; q < stop; ++q) *dst++ = p1;
+    } else if (smoothing == Smoothing::bspline) {
+      for (; q < stop; ++q, ++j) {
+        const auto [b0, b1, b2, b3] = weights[size_t(j)];
+        *dst++ = p0 * b0 + p1 * b1 + p2 * b2 + p3 * b3;
+      }
     } else {
-      const float u = float(j) / float(k);
-      *dst++ = smoothing == Smoothing::bspline ? bspline(p0, p1, p2, p3, u) : catmull_rom(p0, p1, p2, p3, u);
+      for (; q < stop; ++q, ++j) *dst++ = catmull_rom(p0, p1, p2, p3, float(j) / float(k));
     }
-    if (++j == k && q + 1 < end) {
-      j = 0;
-      ++segment;
-      p0 = p1;
-      p1 = p2;
-      p2 = p3;
-      p3 = at(segment + 2);
-    }
+    if (q == end) return;
+    j = 0;
+    p0 = p1;
+    p1 = p2;
+    p2 = p3;
+    p3 = point(next);
+    if (++next == n) next = 0;
   }
 }
 
@@ -152,13 +163,48 @@ Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const 
   return sample_closed(cycle.cycle_start, options, CycleControl{&quads, &cycle});
 }
 
-int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
-                           const std::filesystem::path& path) {
-  const int k = points_per_segment(cycle.cycle_start.back(), options);
+struct CycleCurveWriter::File {
+  const QuadMesh& quads;
+  std::filesystem::path path;
+  CurveOptions options;
+  int k = 1;
+  // A PLY's layout, written by `thread`: the sampled cycle starts and where the points go.
+  std::optional<io::AtomicFile> ply;
+  std::vector<int32_t> start;
+  uint64_t points_at = 0;
+  std::exception_ptr failure;
+  std::thread thread;
+};
+
+CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path)
+    : file_(new File{.quads = quads, .path = path, .options = options}) {
+  int64_t triangles = 0;
+  for (int32_t q = 0; q < quads.num_quads(); ++q) triangles += quads.is_half(q) ? 1 : 2;
+  file_->k = points_per_segment(triangles, options);
+  if (io::lowercase_extension(path) != ".ply") return;
+  file_->ply.emplace(path);
+  file_->thread = std::thread([f = file_.get()] {
+    try {
+      f->start = sampled_start(cycle_starts(f->quads), f->k);
+      f->points_at = io::write_ply_layout({.start = f->start}, *f->ply);
+    } catch (...) {
+      f->failure = std::current_exception();
+    }
+  });
+}
+
+CycleCurveWriter::~CycleCurveWriter() {
+  if (file_->thread.joinable()) file_->thread.join();
+}
+
+int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
+  File& f = *file_;
+  if (f.thread.joinable()) f.thread.join();
+  if (f.failure) std::rethrow_exception(std::exchange(f.failure, nullptr));
   io::PolylineStream out;
-  out.start = sampled_start(cycle.cycle_start, k);
-  out.points = [control = CycleControl{&quads, &cycle}, control_start = cycle.cycle_start, start = out.start, k,
-                smoothing = options.smoothing](int64_t begin, int64_t end, Vec3* dst) {
+  out.start = sampled_start(cycle.cycle_start, f.k);
+  out.points = [control = CycleControl{&f.quads, &cycle}, control_start = cycle.cycle_start, start = out.start,
+                k = f.k, smoothing = f.options.smoothing](int64_t begin, int64_t end, Vec3* dst) {
     // The curve that holds point `begin`, then each curve the range runs into.
     size_t c = size_t(std::upper_bound(start.begin(), start.end(), int32_t(begin)) - start.begin()) - 1;
     while (begin < end) {
@@ -170,8 +216,23 @@ int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, co
       ++c;
     }
   };
-  io::write_polylines(out, path);
+  if (!f.ply) {
+    io::write_polylines(out, f.path);
+  } else {
+    if (out.start != f.start)
+      throw Error("internal error: the cycles of " + f.path.string() + " are not the ones laid out (" +
+                  std::to_string(cycle.num_cycles()) + " cycles of " + std::to_string(cycle.num_triangles()) +
+                  " triangles, laid out " + std::to_string(f.start.size() - 1) + " of " +
+                  std::to_string(f.start.back() / f.k) + ")");
+    io::write_ply_points(out, *f.ply, f.points_at);
+    f.ply->commit();
+  }
   return out.start.back();
+}
+
+int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
+                           const std::filesystem::path& path) {
+  return CycleCurveWriter(quads, options, path).finish(cycle);
 }
 
 } // namespace meander

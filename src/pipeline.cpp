@@ -2,8 +2,10 @@
 
 #include "meander/connectivity.h"
 #include "meander/error.h"
+#include "meander/io.h"
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 namespace meander {
@@ -59,11 +61,22 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
                           "boundaries");
   }
   watch.lap("quadrangulate");
+  std::optional<CycleCurveWriter> writer;
+  if (!job.sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
   result.cycle = hamiltonian_cycle(result.quads, job.cycle);
   watch.lap("cycle");
+  if (writer) {
+    result.points_written = writer->finish(result.cycle);
+    watch.lap("smooth + write");
+  }
   if (job.sample) {
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
     watch.lap("smooth");
+    if (!job.output.empty()) {
+      write_polylines(result.curves, job.output);
+      result.points_written = int64_t(result.curves.points.size());
+      watch.lap("write curve");
+    }
   }
   return result;
 }

@@ -3,6 +3,8 @@
 #include "certificate.h"
 #include "test_support.h"
 
+#include "meander/io.h"
+
 #include <fstream>
 #include <sstream>
 
@@ -81,6 +83,15 @@ TEST_P(CurveOnRealMesh, CertificateHoldsAndCurveLiesOnTheSurface) {
     EXPECT_EQ(l.front(), l.back()) << "each curve is a closed l element";
   }
   EXPECT_LT(curve_distance_ratio(lines, certificate), 0.25);
+
+  // A PLY curve is laid out (header and edges) from the cycles' sizes before the cycles
+  // exist: it must hold the same curves, point for point.
+  const auto ply = dir / "curve.ply";
+  const CommandResult p = run_cli({"curve", in.string(), "-o", ply.string()});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const Polylines from_ply = read_polylines(ply), from_obj = read_polylines(curve);
+  EXPECT_EQ(from_ply.start, from_obj.start);
+  EXPECT_TRUE(from_ply.points == from_obj.points);
 }
 
 INSTANTIATE_TEST_SUITE_P(Index, CurveOnRealMesh, ::testing::ValuesIn(real_meshes), [](const auto& param_info) {

@@ -75,6 +75,37 @@ TEST(CurveStream, PipelineCanLeaveTheSamplingToTheWriter) {
   EXPECT_EQ(unsampled.cycle.cycle_start, sampled.cycle.cycle_start);
 }
 
+// With an output, make_curve writes the file itself, laying a PLY out while the cycle
+// is made; sampled or not, it holds what write_polylines writes of the held curve.
+TEST(CurveStream, PipelineWritesTheOutputWhileMakingTheCycle) {
+  const auto dir = output_dir();
+  const PolygonMesh mesh = sphere_and_torus();
+  const CurveResult held = make_curve(mesh, {.cycle = {.seed = 5}});
+  for (const std::string extension : {".ply", ".obj"}) {
+    write_polylines(held.curves, dir / ("held" + extension));
+    for (const bool sample : {false, true}) {
+      const auto out = dir / ("made" + extension);
+      StageTimes times;
+      const CurveResult made = make_curve(mesh, {.cycle = {.seed = 5}, .sample = sample, .output = out}, &times);
+      EXPECT_EQ(made.points_written, int64_t(held.curves.points.size()));
+      EXPECT_TRUE(read_file(out) == read_file(dir / ("held" + extension))) << extension << " " << sample;
+      EXPECT_EQ(times.back().first, sample ? "write curve" : "smooth + write");
+    }
+  }
+}
+
+// A writer destroyed before finish() (the cycle failed) leaves neither the file nor its
+// temporary, though its thread was writing the PLY's edges.
+TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
+  const auto dir = output_dir() / "unfinished";
+  std::filesystem::create_directories(dir);
+  const CurveResult made = make_curve(sphere(30000), {.sample = false});
+  for (const std::string name : {"curve.ply", "curve.obj"}) {
+    { CycleCurveWriter writer(made.quads, {}, dir / name); }
+    EXPECT_TRUE(std::filesystem::is_empty(dir)) << name;
+  }
+}
+
 TEST(CurveStream, RefusesBadSamplesBeforeAnyFile) {
   const CurveResult made = make_curve(sphere(200), {});
   const auto out = output_dir() / "curve.ply";

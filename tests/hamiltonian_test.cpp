@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace meander {
 namespace {
 
@@ -29,6 +31,27 @@ PolygonMesh two_spheres() {
   return a;
 }
 
+// Three spheres whose vertices and faces alternate in the arrays, so that their quads
+// interleave: the cycles' order (by first quad) is not the order of the shapes.
+PolygonMesh interleaved_spheres() {
+  const PolygonMesh parts[] = {sphere(60), sphere(300), sphere(20)};
+  PolygonMesh m;
+  int32_t most = 0;
+  for (const PolygonMesh& part : parts) most = std::max(most, std::max(part.num_vertices(), part.num_faces()));
+  for (int32_t v = 0; v < most; ++v)
+    for (int k = 0; k < 3; ++k)
+      m.positions.push_back(v < parts[k].num_vertices() ? parts[k].positions[size_t(v)] + Vec3{3.0f * float(k), 0, 0}
+                                                        : Vec3{});
+  for (int32_t f = 0; f < most; ++f)
+    for (int k = 2; k >= 0; --k)
+      if (f < parts[k].num_faces()) {
+        std::vector<int32_t> face(parts[k].face(f).begin(), parts[k].face(f).end());
+        for (int32_t& v : face) v = 3 * v + k;
+        m.add_face(face);
+      }
+  return m;
+}
+
 const Case cases[] = {
     {"sphere", [] { return sphere(500); }, 1},
     {"torus", [] { return torus(600); }, 1},
@@ -36,6 +59,7 @@ const Case cases[] = {
     {"grid", [] { return grid(200); }, 1},
     {"moebius", [] { return moebius(120); }, 1},
     {"two_spheres", two_spheres, 2},
+    {"interleaved_spheres", interleaved_spheres, 3},
 };
 
 class CycleOnShape : public ::testing::TestWithParam<std::tuple<Case, TreeStrategy>> {};
@@ -50,6 +74,7 @@ TEST_P(CycleOnShape, DualSimplestGivesOneCyclePerComponent) {
   const TriangleCycle cycle = hamiltonian_cycle(quads, {.tree = strategy, .seed = 7});
   EXPECT_EQ(verify_cycle(quads, cycle), "");
   EXPECT_EQ(cycle.num_cycles(), shape.components);
+  EXPECT_EQ(cycle_starts(quads), cycle.cycle_start);
   int32_t boundary = 0;
   for (int32_t e = 0; e < c.num_edges(); ++e) boundary += c.edge_degree(e) == 1;
   EXPECT_EQ(int64_t(cycle.order.size()), 2 * int64_t(c.num_edges()) - boundary);

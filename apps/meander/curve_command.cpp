@@ -24,6 +24,7 @@ void run_curve(const CurveArgs& a) {
   // Only the picture needs the curve's points in memory; otherwise they are sampled as
   // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
   job.sample = !a.png.empty();
+  job.output = a.output;
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -36,16 +37,7 @@ void run_curve(const CurveArgs& a) {
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
-
-  int64_t points = 0;
-  if (job.sample) {
-    write_polylines(result.curves, a.output);
-    points = int64_t(result.curves.points.size());
-    log.lap("write curve");
-  } else {
-    points = write_cycle_curves(result.quads, result.cycle, job.curve, a.output);
-    log.lap("smooth + write");
-  }
+  const int64_t points = result.points_written;
   if (!a.triangles.empty()) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
     log.lap("write cycle");

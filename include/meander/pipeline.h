@@ -7,6 +7,7 @@
 #include "meander/hamiltonian.h"
 #include "meander/quadrangulate.h"
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -26,6 +27,9 @@ struct CurveJob {
   // false: leave CurveResult::curves empty, for a caller that writes them with
   // write_cycle_curves instead of holding them.
   bool sample = true;
+  // Not empty: make_curve also writes the curves there (as write_polylines would), and
+  // with `sample` false lays the file out while the cycle is made (CycleCurveWriter).
+  std::filesystem::path output;
 };
 
 // Wall-clock seconds per stage, in the order the stages ran.
@@ -35,6 +39,7 @@ struct CurveResult {
   QuadMesh quads;
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
+  int64_t points_written = 0; // to CurveJob::output
 };
 
 // Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh

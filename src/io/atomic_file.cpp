@@ -96,6 +96,18 @@ void AtomicFile::write_all(const char* data, size_t size) {
   }
 }
 
+uint64_t AtomicFile::position() {
+  flush();
+  const off_t at = ::lseek(fd_, 0, SEEK_CUR);
+  if (at < 0) fail("cannot write", errno);
+  return uint64_t(at);
+}
+
+void AtomicFile::seek(uint64_t offset) {
+  flush();
+  if (::lseek(fd_, off_t(offset), SEEK_SET) < 0) fail("cannot write", errno);
+}
+
 void AtomicFile::close() {
   if (fd_ < 0) return;
   flush();

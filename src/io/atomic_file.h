@@ -40,6 +40,11 @@ public:
     used_ += sizeof(T);
   }
 
+  // The offset of the next byte, and a move to another (past the end leaves a hole that
+  // a later seek back fills): for formats whose sections are written out of order.
+  uint64_t position();
+  void seek(uint64_t offset);
+
   // Writes out the buffer, closes the file and renames it over the target.
   void commit();
 

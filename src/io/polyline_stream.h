@@ -3,6 +3,7 @@
 // 4 samples) are written without ever existing whole: write_cycle_curves in curve.h.
 #pragma once
 
+#include "io/atomic_file.h"
 #include "meander/mesh.h"
 
 #include <cstdint>
@@ -29,5 +30,12 @@ struct PolylineStream {
 // than a few blocks of points exist at once. An SVG asks for every point twice, its page
 // being fitted to their bounding box first.
 void write_polylines(const PolylineStream& curves, const std::filesystem::path& path);
+
+// write_polylines' PLY in two steps, for a writer that knows the polylines' sizes before
+// their points: write_ply_layout writes the header and the edges, which depend on
+// curves.start and curves.open alone (8 bytes an edge, a GB for a 10M-triangle curve),
+// leaving room for the points and returning where they go; write_ply_points fills it.
+uint64_t write_ply_layout(const PolylineStream& curves, AtomicFile& out);
+void write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at);
 
 } // namespace meander::io

@@ -50,37 +50,7 @@ void write_obj_polylines(const io::PolylineStream& curves, io::AtomicFile& out) 
 }
 
 void write_ply_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
-  // A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point has none.
-  int64_t edges = 0;
-  for (int32_t k = 0; k < curves.size(); ++k)
-    if (const int32_t n = curves.start[k + 1] - curves.start[k]; n >= 2) edges += curves.closed(k) ? n : n - 1;
-  out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
-  out.integer(curves.start.back());
-  out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
-  out.integer(edges);
-  out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
-  // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
-  // all cores and written in order.
-  io::write_blocks(out, curves.start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
-    std::vector<Vec3> points(size_t(end - begin));
-    curves.points(begin, end, points.data());
-    bytes.resize(points.size() * 12);
-    char* at = bytes.data();
-    for (const Vec3& p : points) {
-      io::store_little_endian(at, p.x);
-      io::store_little_endian(at + 4, p.y);
-      io::store_little_endian(at + 8, p.z);
-      at += 12;
-    }
-  });
-  for (int32_t k = 0; k < curves.size(); ++k) {
-    const int32_t first = curves.start[k], end = curves.start[k + 1];
-    if (end - first < 2) continue;
-    for (int32_t i = first; i < (curves.closed(k) ? end : end - 1); ++i) {
-      out.little_endian(i);
-      out.little_endian(i + 1 == end ? first : i + 1);
-    }
-  }
+  io::write_ply_points(curves, out, io::write_ply_layout(curves, out));
 }
 
 void write_json_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
@@ -150,6 +120,56 @@ void write_svg_polylines(const io::PolylineStream& curves, io::AtomicFile& out) 
 }
 
 } // namespace
+
+uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
+  // A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point
+  // has none. edge_start[k]: the first edge of polyline k.
+  std::vector<int64_t> edge_start(size_t(curves.size()) + 1, 0);
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const int32_t n = curves.start[k + 1] - curves.start[k];
+    edge_start[size_t(k) + 1] = edge_start[size_t(k)] + (n < 2 ? 0 : curves.closed(k) ? n : n - 1);
+  }
+  out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
+  out.integer(curves.start.back());
+  out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
+  out.integer(edge_start.back());
+  out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
+  const uint64_t points_at = out.position();
+  out.seek(points_at + 12 * uint64_t(curves.start.back()));
+  io::write_blocks(out, edge_start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
+    bytes.resize(size_t(end - begin) * 8);
+    char* at = bytes.data();
+    // Edge i of polyline k joins points first + i and first + i + 1, the last of a closed
+    // one back to its first.
+    size_t k = size_t(std::upper_bound(edge_start.begin(), edge_start.end(), begin) - edge_start.begin()) - 1;
+    for (int64_t e = begin; e < end; ++e, at += 8) {
+      while (e >= edge_start[k + 1]) ++k;
+      const int32_t first = curves.start[k], last = curves.start[k + 1] - 1;
+      const int32_t i = first + int32_t(e - edge_start[k]);
+      io::store_little_endian(at, i);
+      io::store_little_endian(at + 4, i == last ? first : i + 1);
+    }
+  });
+  return points_at;
+}
+
+void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
+  out.seek(points_at);
+  // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
+  // all cores and written in order.
+  io::write_blocks(out, curves.start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
+    std::vector<Vec3> points(size_t(end - begin));
+    curves.points(begin, end, points.data());
+    bytes.resize(points.size() * 12);
+    char* at = bytes.data();
+    for (const Vec3& p : points) {
+      io::store_little_endian(at, p.x);
+      io::store_little_endian(at + 4, p.y);
+      io::store_little_endian(at + 8, p.z);
+      at += 12;
+    }
+  });
+}
 
 Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32_t> edges, std::string_view name) {
   const int32_t num_edges = int32_t(edges.size() / 2);
