@@ -77,6 +77,7 @@ try {
     { timeout: 120000 });
   const before = await page.evaluate(() => ({ info: window.studio.resultInfo(), revision: window.studio.state.revision }));
   check(!before.info.lines && before.info.vertices > 0, 'variable wire shows a mesh');
+  check(await page.inputValue('#tree') === 'shaped', 'a variable wire starts from the shaped tree, as the CLI\'s');
 
   // Dragging the slider ('input') shows a preview, without the printability report and
   // not offered for download; letting it go ('change') brings the full result.
@@ -130,6 +131,7 @@ try {
   // Duotone: a textured surface in the scene (texture size kept small for speed).
   const wireRevision = await page.evaluate(() => window.studio.state.revision);
   await page.selectOption('#mode', 'duotone');
+  check(await page.inputValue('#tree') === 'random', 'leaving the variable wire gives the random tree back');
   await page.selectOption('#texture-size', '256');
   await settled(wireRevision);
   await page.waitForFunction(() => window.studio.state.stats?.mode === 'duotone' && !window.studio.state.busy &&

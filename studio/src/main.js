@@ -386,11 +386,16 @@ for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius',
   if ($(id).type === 'range') $(id).addEventListener('change', changed);
 }
 // Duotone starts from its command's default quads (Catmull-Clark topology), the others
-// from dual-simplest, as `meander duotone` and `meander curve`/`wire` do.
+// from dual-simplest, as `meander duotone` and `meander curve`/`wire` do. Variable wires
+// and ribbons start from the shaped tree, as `meander wire --method variable` does (their
+// slabs fold where the cycle turns round in a thin triangle), unless another tree than
+// the previous mode's default was chosen.
 let previousMode = $('mode').value;
+const defaultTree = (mode) => (mode.startsWith('variable') ? 'shaped' : 'random');
 $('mode').addEventListener('input', () => {
   const mode = $('mode').value;
   if ((mode === 'duotone') !== (previousMode === 'duotone')) $('quad').value = mode === 'duotone' ? 'catmull-clark' : 'dual-simplest';
+  if ($('tree').value === defaultTree(previousMode)) $('tree').value = defaultTree(mode);
   previousMode = mode;
   showModeControls();
 });
