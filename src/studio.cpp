@@ -354,6 +354,8 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   } else {
     result.report = check_printability(result.mesh, {.known_clear = known_clear, .thickness = false});
     result.triangles = result.report.triangles;
+    if (result.report.self_intersecting)
+      result.surface_crossings = int32_t(crossing_cycle_triangles(result.curve.quads, result.curve.cycle).size());
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -389,6 +391,7 @@ std::string studio_stats_json(const StudioResult& result) {
       stats["self_intersecting"] = r.self_intersecting;
       stats["volume"] = r.volume;
       stats["printable"] = r.printable();
+      stats["surface_crossings"] = result.surface_crossings;
     }
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;

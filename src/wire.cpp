@@ -687,4 +687,8 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   return {std::move(wire), clear};
 }
 
+std::vector<int32_t> crossing_cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle) {
+  return self_intersecting_faces(cycle_triangles(quads, cycle));
+}
+
 } // namespace meander

@@ -128,6 +128,22 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
   }
 }
 
+// A wire on a surface that crosses itself (Spot's control mesh: 8 pairs of its own
+// triangles) cannot be clear, and the page is told why, as `meander wire` says it; on an
+// embedded surface the count is 0.
+TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto path = test::shared_meshes() / "spot_control_mesh.obj";
+  const StudioSurface spot = load_studio_surface(path.filename().string(), test::read_file(path));
+  const StudioParams params{.mode = StudioMode::variable_wire, .levels = 0};
+  const StudioResult crossing = make_studio_result(spot, params);
+  ASSERT_TRUE(crossing.report.self_intersecting);
+  EXPECT_GT(crossing.surface_crossings, 0);
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(crossing))["surface_crossings"], crossing.surface_crossings);
+  const StudioResult clear = make_studio_result(demo_surface(), params);
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(clear))["surface_crossings"], 0);
+}
+
 // The session's last result lends its atlas to the next duotone only for the same tile
 // options: what is drawn is always the atlas of the options asked for.
 TEST(Studio, DuotoneReusesTheAtlasOnlyForTheSameTiles) {

@@ -97,7 +97,7 @@ void run_wire(const WireArgs& a) {
   if (report.self_intersecting) {
     // Say when no wire that follows the surface could be clear: the surface's own
     // triangles (the cycle's, as the wire follows them) cross each other.
-    const std::vector<int32_t> crossing = self_intersecting_faces(cycle_triangles(curve.quads, curve.cycle));
+    const std::vector<int32_t> crossing = crossing_cycle_triangles(curve.quads, curve.cycle);
     if (!crossing.empty())
       summary += " Note: the surface itself crosses itself (" + std::to_string(crossing.size()) +
                  " of the cycle's triangles, e.g. number " + std::to_string(crossing.front()) +

@@ -97,6 +97,9 @@ struct StudioResult {
   Appearance appearance;   // duotone: the tile atlas and texture coordinates of `mesh`
   double radius = 0;     // constant modes: the radius used (auto resolved)
   PrintabilityReport report; // of a wire or ribbon (self-intersections, no thickness)
+  // Of a self-intersecting wire or ribbon: how many of the cycle's triangles cross others
+  // (crossing_cycle_triangles), so that the page can say when no settings will clear it.
+  int32_t surface_crossings = 0;
   int64_t triangles = 0; // of the cycle (curve mode) or the mesh, after fanning
   double seconds = 0;    // making it, report included
 };

@@ -17,6 +17,7 @@
 
 #include <optional>
 #include <string_view>
+#include <vector>
 
 namespace meander {
 
@@ -109,5 +110,11 @@ struct VariableWire {
 // around them and smoothed again, a few rounds while that helps. Throws UsageError for
 // s or t outside [0, 1], thickness < 0 or levels < 0.
 VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
+
+// The cycle's triangles (numbered as cycle_triangles() lists them) that cross others of
+// them: where the surface a wire follows crosses itself, so that no wire following it can
+// be clear. Empty on an embedded surface. What `meander wire` and the studio tell a
+// maker whose wire self-intersects.
+std::vector<int32_t> crossing_cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle);
 
 } // namespace meander

@@ -335,6 +335,10 @@ function showStats(stats) {
   } else if (stats.mode !== 'curve') {
     rows.push(['faces', stats.faces.toLocaleString()]);
     if (!stats.preview) rows.push(['watertight', yesNo(stats.watertight)], ['self-intersection', yesNo(stats.self_intersecting)]);
+    // As `meander wire` notes: where the surface itself crosses itself, no settings clear the wire.
+    if (stats.surface_crossings > 0) {
+      rows.push(['surface', `crosses itself (${stats.surface_crossings.toLocaleString()} of the cycle's triangles): a wire that follows it cannot be clear there`]);
+    }
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
