@@ -197,14 +197,14 @@ CycleCurveWriter::~CycleCurveWriter() {
   if (file_->thread.joinable()) file_->thread.join();
 }
 
-int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
-  File& f = *file_;
-  if (f.thread.joinable()) f.thread.join();
-  if (f.failure) std::rethrow_exception(std::exchange(f.failure, nullptr));
+namespace {
+
+// The curves of the cycles as a stream that samples them when asked, k points a segment.
+io::PolylineStream cycle_stream(const QuadMesh& quads, const TriangleCycle& cycle, int k, Smoothing smoothing) {
   io::PolylineStream out;
-  out.start = sampled_start(cycle.cycle_start, f.k);
-  out.points = [control = CycleControl{&f.quads, &cycle}, control_start = cycle.cycle_start, start = out.start,
-                k = f.k, smoothing = f.options.smoothing](int64_t begin, int64_t end, Vec3* dst) {
+  out.start = sampled_start(cycle.cycle_start, k);
+  out.points = [control = CycleControl{&quads, &cycle}, control_start = cycle.cycle_start, start = out.start, k,
+                smoothing](int64_t begin, int64_t end, Vec3* dst) {
     // The curve that holds point `begin`, then each curve the range runs into.
     size_t c = size_t(std::upper_bound(start.begin(), start.end(), int32_t(begin)) - start.begin()) - 1;
     while (begin < end) {
@@ -216,6 +216,16 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
       ++c;
     }
   };
+  return out;
+}
+
+} // namespace
+
+int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
+  File& f = *file_;
+  if (f.thread.joinable()) f.thread.join();
+  if (f.failure) std::rethrow_exception(std::exchange(f.failure, nullptr));
+  const io::PolylineStream out = cycle_stream(f.quads, cycle, f.k, f.options.smoothing);
   if (!f.ply) {
     io::write_polylines(out, f.path);
   } else {
@@ -230,9 +240,14 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
   return out.start.back();
 }
 
+// The cycles are known here: their sizes need no breadth-first pass, nor the file a
+// writer of its own.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
                            const std::filesystem::path& path) {
-  return CycleCurveWriter(quads, options, path).finish(cycle);
+  const io::PolylineStream out =
+      cycle_stream(quads, cycle, points_per_segment(cycle.cycle_start.back(), options), options.smoothing);
+  io::write_polylines(out, path);
+  return out.start.back();
 }
 
 } // namespace meander

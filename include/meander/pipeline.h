@@ -24,8 +24,8 @@ struct CurveJob {
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
   CycleOptions cycle;
   CurveOptions curve;
-  // false: leave CurveResult::curves empty, for a caller that writes them with
-  // write_cycle_curves instead of holding them.
+  // false: leave CurveResult::curves empty, for a caller that writes them to `output`
+  // or with write_cycle_curves instead of holding them.
   bool sample = true;
   // Not empty: make_curve also writes the curves there (as write_polylines would), and
   // with `sample` false lays the file out while the cycle is made (CycleCurveWriter).
