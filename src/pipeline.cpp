@@ -42,6 +42,13 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
   Stopwatch watch(times);
   CurveResult result;
+  if (job.cap_flips) {
+    CapFlips flipped = flip_caps(std::move(mesh), *job.cap_flips);
+    mesh = std::move(flipped.mesh);
+    result.cap_flips = flipped.flips;
+    if (flipped.flips > 0) connectivity = Connectivity(); // same sizes, other edges: not caught below
+    watch.lap("flip caps");
+  }
   if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {
     connectivity = build_connectivity(mesh);
     watch.lap("connectivity");

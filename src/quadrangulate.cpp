@@ -31,6 +31,23 @@ Vec3 face_centroid(const PolygonMesh& mesh, std::span<const Vec3> positions, int
   return {float(x / n), float(y / n), float(z / n)};
 }
 
+// A triangle's face point is its incentre, any other face's its centroid. A needle's
+// centroid lies almost on its long sides, so the dual-of-Simplest triangles on them are
+// flat (an angle near 180 degrees at the face point) and the cycle turns back inside
+// them, where a variable wire's slabs fold over each other. At the incentre the angle
+// facing side e is 90 degrees plus half the face's angle opposite e: below 135 degrees
+// unless the face is obtuse (caps: flip_caps.h).
+Vec3 face_point(const PolygonMesh& mesh, std::span<const Vec3> positions, int32_t f) {
+  if (mesh.face_size(f) != 3) return face_centroid(mesh, positions, f);
+  const auto v = mesh.face(f);
+  const Vec3 a = positions[size_t(v[0])], b = positions[size_t(v[1])], c = positions[size_t(v[2])];
+  // Each corner weighted by the length of the side opposite it.
+  const double wa = norm(c - b), wb = norm(a - c), wc = norm(b - a), sum = wa + wb + wc;
+  if (!(sum > 0)) return a;
+  const auto blend = [&](float Vec3::*axis) { return float((wa * a.*axis + wb * b.*axis + wc * c.*axis) / sum); };
+  return {blend(&Vec3::x), blend(&Vec3::y), blend(&Vec3::z)};
+}
+
 // Side adjacency of a quad mesh given as polygons (every face a quad), from its edges.
 QuadMesh quads_with_adjacency(PolygonMesh quad_faces) {
   const Connectivity c = build_connectivity(quad_faces);
@@ -68,7 +85,7 @@ QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions
   // Every loop below writes only its own elements, so each runs in parallel.
   const std::span<const Vec3> vertices(q.positions.data(), size_t(nv));
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
-    for (int32_t f = faces.begin(); f < faces.end(); ++f) q.positions[size_t(nv + f)] = face_centroid(mesh, vertices, f);
+    for (int32_t f = faces.begin(); f < faces.end(); ++f) q.positions[size_t(nv + f)] = face_point(mesh, vertices, f);
   });
 
   // Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face

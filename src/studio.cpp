@@ -310,7 +310,10 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
-  result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, params.job);
+  const bool variable = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon;
+  CurveJob curve_job = params.job;
+  if (variable) curve_job.cap_flips = CapFlipOptions{}; // as `meander wire --method variable`
+  result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, curve_job);
   result.curve_length = total_length(result.curve.curves);
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
   bool known_clear = false; // variable_wire searched its result already
@@ -340,7 +343,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
       throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
     result.radius = made.radius;
     result.mesh = std::move(made.mesh);
-  } else if (mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon) {
+  } else if (variable) {
     VariableWire made = variable_wire(result.curve.quads, result.curve.cycle,
                                       {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,
                                        .levels = params.levels});
@@ -393,6 +396,7 @@ std::string studio_stats_json(const StudioResult& result) {
       stats["printable"] = r.printable();
       stats["surface_crossings"] = result.surface_crossings;
     }
+    stats["cap_flips"] = result.curve.cap_flips;
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;
   }

@@ -120,6 +120,32 @@ TEST(CliWireOutput, VariableWireAtDefaultLevelsOnCoarseMeshes) {
   EXPECT_FALSE(read_file(dir / "cube.ply") == read_file(dir / "randomcube.ply"));
 }
 
+// `--method variable` flips the long edges of caps first and says so; --cap-angle 180
+// keeps the mesh as it is, and the constant method never flips.
+TEST(CliWireOutput, VariableMethodFlipsCapsUnlessTold) {
+  const auto dir = output_dir();
+  const auto cap = write_file("cap.obj", "v 0 0 0\nv 2 0 0\nv 1 0.05 0\nv 1 -1 0\nf 1 2 3\nf 2 1 4\n");
+  auto wire = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"wire", cap.string(), "-o", (dir / out).string(), "--levels", "0", "--samples", "2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+  };
+  const CommandResult flipped = wire("flipped.ply", {"--method", "variable"});
+  ASSERT_EQ(flipped.exit_code, 0) << flipped.err;
+  EXPECT_NE(flipped.err.find("cap.obj: note: flipped 1 edge facing an angle over 120 degrees"), std::string::npos) << flipped.err;
+  const CommandResult kept = wire("kept.ply", {"--method", "variable", "--cap-angle", "180"});
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_EQ(kept.err.find("flipped"), std::string::npos) << kept.err;
+  EXPECT_FALSE(read_file(dir / "flipped.ply") == read_file(dir / "kept.ply"));
+  const CommandResult constant = wire("constant.ply", {});
+  ASSERT_EQ(constant.exit_code, 0) << constant.err;
+  EXPECT_EQ(constant.err.find("flipped"), std::string::npos) << constant.err;
+  const CommandResult bad = wire("bad.ply", {"--method", "variable", "--cap-angle", "80"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--cap-angle"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.ply"));
+}
+
 // Section 4.1: with s and t near 1 the variable ribbons cover the surface densely
 // without running into each other (on meshes without long thin faces).
 TEST(CliWireOutput, DenseRibbonsDoNotSelfIntersect) {

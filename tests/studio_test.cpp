@@ -144,6 +144,18 @@ TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(clear))["surface_crossings"], 0);
 }
 
+// The variable modes flip caps first, as `meander wire --method variable` does, and say
+// how many; the other modes use the mesh as it is.
+TEST(Studio, VariableModesFlipCaps) {
+  const StudioSurface cap = load_studio_surface("cap.obj", "v 0 0 0\nv 2 0 0\nv 1 0.05 0\nv 1 -1 0\nf 1 2 3\nf 2 1 4\n");
+  for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::constant_ribbon}) {
+    const StudioResult r = make_studio_result(cap, {.mode = mode, .levels = 0, .preview = true});
+    const bool variable = mode != StudioMode::constant_ribbon;
+    EXPECT_EQ(r.curve.cap_flips, variable ? 1 : 0);
+    EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["cap_flips"], r.curve.cap_flips);
+  }
+}
+
 // The session's last result lends its atlas to the next duotone only for the same tile
 // options: what is drawn is always the atlas of the options asked for.
 TEST(Studio, DuotoneReusesTheAtlasOnlyForTheSameTiles) {

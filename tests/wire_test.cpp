@@ -145,6 +145,20 @@ TEST(Wire, SlabsOnBothSidesOfAThinPlateStayApart) {
   EXPECT_TRUE(check_printability(thick, {.thickness = false}).self_intersecting);
 }
 
+// The Stanford bunny's scan has flat caps (angles up to 171 degrees) whose
+// dual-of-Simplest triangles lie on one line, where the slabs fold over each other at any
+// size (22 crossing faces at level 0 on the shaped tree). With its caps flipped, as
+// `meander wire --method variable` does, the wire is clear (level 0 here for time; level 1
+// was measured clear too, docs/wires.md).
+TEST(Wire, VariableWireOnAScanIsClearOnceItsCapsAreFlipped) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  PolygonMesh bunny = repair(read_mesh(test::shared_meshes() / "stanford-bunny_original_holes.obj"), "bunny").mesh;
+  const CurveResult curve =
+      make_curve(std::move(bunny), {.cap_flips = CapFlipOptions{}, .cycle = {.tree = TreeStrategy::shaped}, .sample = false});
+  EXPECT_GT(curve.cap_flips, 100);
+  EXPECT_TRUE(variable_wire(curve.quads, curve.cycle, {.levels = 0}).clear);
+}
+
 // `clear` is the search's verdict on the very mesh returned, and a report that takes it
 // says what its own search says; only a wire of automatic thickness is searched.
 TEST(Wire, ClearIsTheVerdictOfASearchOfTheResult) {

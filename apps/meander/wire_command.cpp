@@ -25,7 +25,7 @@ struct WireArgs {
   CurveFlags curve;
   PictureArgs picture;
   int sides = 8, levels = 2;
-  double s = 0.6, t = 0.6, thickness = 0;
+  double s = 0.6, t = 0.6, thickness = 0, cap_angle = 120;
   bool strict = false, verbose = false;
 };
 
@@ -40,8 +40,9 @@ std::optional<double> parse_radius(const std::string& text) {
 }
 
 void run_wire(const WireArgs& a) {
-  const CurveJob job = curve_job(a.curve);
   const bool constant = a.method == "constant";
+  CurveJob job = curve_job(a.curve);
+  if (!constant && a.cap_angle < 180) job.cap_flips = CapFlipOptions{.cap_angle_degrees = a.cap_angle};
   const WireShape shape = parse_wire_shape(a.shape);
   const std::optional<double> radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
@@ -57,6 +58,10 @@ void run_wire(const WireArgs& a) {
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
+  if (curve.cap_flips > 0)
+    std::fprintf(stderr, "%s: note: flipped %lld edge%s facing an angle over %g degrees, whose flat triangles fold the "
+                         "slabs (--cap-angle 180 keeps them)\n",
+                 a.input.c_str(), static_cast<long long>(curve.cap_flips), curve.cap_flips == 1 ? "" : "s", a.cap_angle);
 
   PolygonMesh wire;
   double radius_used = 0;
@@ -129,6 +134,9 @@ Command add_wire_command(CLI::App& parent) {
   app->add_option("--s", args->s, "variable: trapezoid size across the curve, 0..1 (1 covers the surface)")->check(CLI::Range(0.0, 1.0))->capture_default_str();
   app->add_option("--t", args->t, "variable: trapezoid size along the curve, 0..1")->check(CLI::Range(0.0, 1.0))->capture_default_str();
   app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the local ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app->add_option("--cap-angle", args->cap_angle, "variable: first flip the long edge of flat triangles whose largest "
+                                                  "angle exceeds this many degrees (180: keep the mesh as it is)")
+      ->check(CLI::Range(90.0, 180.0))->capture_default_str();
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--report", args->report, "also write the printability report (.json)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the result to this picture (.png); a wire's surface hides its back parts");

@@ -4,10 +4,12 @@
 #pragma once
 
 #include "meander/curve.h"
+#include "meander/flip_caps.h"
 #include "meander/hamiltonian.h"
 #include "meander/quadrangulate.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -22,6 +24,9 @@ Quadrangulation parse_quadrangulation(std::string_view name);
 
 struct CurveJob {
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
+  // Set: flip_caps() runs on the mesh first (what `wire --method variable` does, whose
+  // slabs fold in caps); none: the mesh is used as it is.
+  std::optional<CapFlipOptions> cap_flips;
   CycleOptions cycle;
   CurveOptions curve;
   // false: leave CurveResult::curves empty, for a caller that writes them to `output`
@@ -40,6 +45,7 @@ struct CurveResult {
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
   int64_t points_written = 0; // to CurveJob::output
+  int64_t cap_flips = 0;      // edges flipped by CurveJob::cap_flips
 };
 
 // Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh

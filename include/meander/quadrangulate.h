@@ -34,7 +34,8 @@ struct QuadMesh {
 
 // Dual of Simplest subdivision: one quad per edge e = (v1, v2) of the input with corners
 // (v1, f2, v2, f1), where f1, f2 are the faces on either side and face points sit at
-// face centroids. Vertices: the input's vertices first, then one face point per face.
+// triangles' incentres and other faces' centroids (so that a needle's triangles are not
+// flat). Vertices: the input's vertices first, then one face point per face.
 // A boundary edge gives a half quad (v1, -, v2, f1). Works for any manifold-edge mesh:
 // any genus, boundaries, non-orientable. O(corners).
 // Throws TopologyError if an edge is shared by more than two faces (repair first).

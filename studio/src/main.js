@@ -339,6 +339,8 @@ function showStats(stats) {
     if (stats.surface_crossings > 0) {
       rows.push(['surface', `crosses itself (${stats.surface_crossings.toLocaleString()} of the cycle's triangles): a wire that follows it cannot be clear there`]);
     }
+    // As `meander wire --method variable` notes: the mesh it was made on had caps flipped.
+    if (stats.cap_flips > 0) rows.push(['caps flipped', `${stats.cap_flips.toLocaleString()} edges (flat triangles fold the slabs)`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
