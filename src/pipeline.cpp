@@ -46,7 +46,8 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     CapFlips flipped = flip_caps(std::move(mesh), *job.cap_flips);
     mesh = std::move(flipped.mesh);
     result.cap_flips = flipped.flips;
-    if (flipped.flips > 0) connectivity = Connectivity(); // same sizes, other edges: not caught below
+    result.cap_cuts = flipped.cuts;
+    if (flipped.flips + flipped.cuts > 0) connectivity = Connectivity(); // flips keep the sizes: not caught below
     watch.lap("flip caps");
   }
   if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {

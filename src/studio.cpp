@@ -397,6 +397,7 @@ std::string studio_stats_json(const StudioResult& result) {
       stats["surface_crossings"] = result.surface_crossings;
     }
     stats["cap_flips"] = result.curve.cap_flips;
+    stats["cap_cuts"] = result.curve.cap_cuts;
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;
   }

@@ -84,6 +84,29 @@ TEST(FlipCaps, LeavesMisorientedAndMixedPairsAlone) {
   EXPECT_EQ(flip_caps(with_quad).flips, 0);
 }
 
+// CGAL's degtri_four: a triangle with collinear corners along the boundary, fanned
+// around its middle corner. Cut off, it leaves the boundary running through that corner.
+TEST(FlipCaps, CutsACapOffTheBoundary) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {2, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 1, 0}};
+  for (const auto& f : {std::array{0, 1, 2}, std::array{0, 2, 3}, std::array{2, 1, 4}, std::array{3, 2, 4}}) mesh.add_face(f);
+  const CapFlips cut = flip_caps(mesh);
+  EXPECT_EQ(cut.flips, 0);
+  EXPECT_EQ(cut.cuts, 1);
+  ASSERT_EQ(cut.mesh.num_faces(), 3);
+  EXPECT_EQ(cut.mesh.positions, mesh.positions);
+  const MeshReport report = inspect(cut.mesh);
+  EXPECT_EQ(report.non_manifold_vertices, 0);
+  EXPECT_EQ(report.unreferenced_vertices, 0);
+  EXPECT_EQ(report.boundary_loops, 1);
+  EXPECT_EQ(caps(cut.mesh, 120), 0);
+  // A lone cap: its apex is on the boundary already.
+  PolygonMesh lone;
+  lone.positions = {{0, 0, 0}, {2, 0, 0}, {1, 0.05f, 0}};
+  lone.add_face({0, 1, 2});
+  EXPECT_EQ(flip_caps(lone).cuts, 0);
+}
+
 // A tetrahedron whose apex lies almost on an edge: the flip would make an edge it already
 // has (and two faces on the same three vertices).
 TEST(FlipCaps, NeverMakesAnEdgeTheMeshHas) {

@@ -58,10 +58,15 @@ void run_wire(const WireArgs& a) {
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
-  if (curve.cap_flips > 0)
-    std::fprintf(stderr, "%s: note: flipped %lld edge%s facing an angle over %g degrees, whose flat triangles fold the "
-                         "slabs (--cap-angle 180 keeps them)\n",
-                 a.input.c_str(), static_cast<long long>(curve.cap_flips), curve.cap_flips == 1 ? "" : "s", a.cap_angle);
+  if (curve.cap_flips + curve.cap_cuts > 0) {
+    const auto count = [](int64_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+    std::string done;
+    if (curve.cap_flips > 0) done = "flipped " + count(curve.cap_flips, "edge", "edges");
+    if (curve.cap_cuts > 0)
+      done += (done.empty() ? "" : " and ") + ("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " on the boundary");
+    std::fprintf(stderr, "%s: note: %s (triangles with an angle over %g degrees fold the slabs; --cap-angle 180 keeps them)\n",
+                 a.input.c_str(), done.c_str(), a.cap_angle);
+  }
 
   PolygonMesh wire;
   double radius_used = 0;

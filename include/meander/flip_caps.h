@@ -5,7 +5,8 @@
 // the cycle turns back on itself there and the slabs standing on it overlap at any
 // thickness (docs/wires.md, "Where slabs fold"). Flipping the cap's long edge replaces
 // the cap and its neighbour by two triangles whose largest angle is smaller; the surface
-// moves by no more than the cap's height, and less where the pair is flat.
+// moves by no more than the cap's height, and less where the pair is flat. On the
+// boundary, where there is no edge to flip, the cap is cut off.
 #pragma once
 
 #include "meander/mesh.h"
@@ -27,14 +28,18 @@ struct CapFlipOptions {
 struct CapFlips {
   PolygonMesh mesh;
   int64_t flips = 0;
+  int64_t cuts = 0; // caps on the boundary, removed
 };
 
 // Flips the edge opposite a cap's largest angle when the neighbour across it is a
 // triangle wound the same way, the flip lowers the pair's largest angle, moves the
 // surface by at most options.max_move, folds neither new triangle over (each faces the
-// way the pair did) and does not make an edge the mesh already has (it stays manifold). Faces other than triangles,
-// boundary, non-manifold and misoriented edges are left as they are; the number and
-// sizes of faces do not change. Deterministic; O(corners) per pass.
+// way the pair did) and does not make an edge the mesh already has (it stays manifold).
+// A cap whose long edge lies on the boundary is cut off instead (the boundary then runs
+// through its apex) when its height is within options.max_move of that edge and its
+// apex is not on the boundary already. Faces other than triangles, non-manifold and
+// misoriented edges are left as they are; the vertices do not change. Deterministic;
+// O(corners) per pass.
 CapFlips flip_caps(PolygonMesh mesh, const CapFlipOptions& options = {});
 
 } // namespace meander

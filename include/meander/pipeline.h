@@ -45,7 +45,7 @@ struct CurveResult {
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
   int64_t points_written = 0; // to CurveJob::output
-  int64_t cap_flips = 0;      // edges flipped by CurveJob::cap_flips
+  int64_t cap_flips = 0, cap_cuts = 0; // by CurveJob::cap_flips: edges flipped, caps cut off
 };
 
 // Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh
