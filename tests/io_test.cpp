@@ -3,6 +3,7 @@
 #include "io_test_support.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/shapes.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -161,6 +162,24 @@ TEST(IoWrite, OutputIsDeterministic) {
       write_mesh(mesh, dir / name, {.ascii = ascii});
       EXPECT_EQ(test::read_file(dir / name), first) << name;
     }
+}
+
+// Writers reserve a file's blocks ahead of their writes (in steps of up to 64 MiB) and
+// cut the file back when it closes: what is left is the bytes written, no more, also
+// where a format writes its sections out of order (a PLY curve's edges before its points).
+TEST(IoWrite, LargeFilesHoldTheirBytesAndNoMore) {
+  const fs::path dir = output_dir();
+  const PolygonMesh mesh = sphere(200000);
+  write_mesh(mesh, dir / "sphere.stl");
+  EXPECT_EQ(fs::file_size(dir / "sphere.stl"), 84 + 50 * uintmax_t(mesh.num_faces()));
+  Polylines curve;
+  for (int i = 0; i < 700000; ++i) curve.points.push_back({float(i), float(i % 7), 0});
+  curve.start.push_back(int32_t(curve.points.size()));
+  write_polylines(curve, dir / "curve.ply");
+  const std::string bytes = test::read_file(dir / "curve.ply");
+  const size_t header = bytes.find("end_header\n") + 11;
+  EXPECT_EQ(bytes.size(), header + (12 + 8) * curve.points.size());
+  EXPECT_EQ(read_polylines(dir / "curve.ply").points, curve.points);
 }
 
 TEST(IoWrite, TextFormatsAreAsDocumented) {

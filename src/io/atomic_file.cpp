@@ -2,6 +2,7 @@
 
 #include "meander/error.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -84,7 +85,21 @@ void AtomicFile::flush() {
   used_ = 0;
 }
 
+void AtomicFile::reserve(uint64_t end) {
+  if (!reserving_ || end <= reserved_) return;
+  constexpr uint64_t first_step = uint64_t(1) << 20, largest_step = uint64_t(64) << 20;
+  const uint64_t step = std::clamp(reserved_, first_step, largest_step);
+  const uint64_t to = std::max(end, reserved_ + step);
+  // Not supported, or no room for a whole step: write() says whether the bytes fit.
+  if (::fallocate(fd_, 0, off_t(reserved_), off_t(to - reserved_)) != 0) {
+    reserving_ = false;
+    return;
+  }
+  reserved_ = to;
+}
+
 void AtomicFile::write_all(const char* data, size_t size) {
+  reserve(offset_ + size);
   while (size > 0) {
     const ssize_t written = ::write(fd_, data, size);
     if (written < 0) {
@@ -93,24 +108,26 @@ void AtomicFile::write_all(const char* data, size_t size) {
     }
     data += written;
     size -= size_t(written);
+    offset_ += uint64_t(written);
   }
+  written_ = std::max(written_, offset_);
 }
 
 uint64_t AtomicFile::position() {
   flush();
-  const off_t at = ::lseek(fd_, 0, SEEK_CUR);
-  if (at < 0) fail("cannot write", errno);
-  return uint64_t(at);
+  return offset_;
 }
 
 void AtomicFile::seek(uint64_t offset) {
   flush();
   if (::lseek(fd_, off_t(offset), SEEK_SET) < 0) fail("cannot write", errno);
+  offset_ = offset;
 }
 
 void AtomicFile::close() {
   if (fd_ < 0) return;
   flush();
+  if (reserved_ > written_ && ::ftruncate(fd_, off_t(written_)) != 0) fail("cannot write", errno);
   const int closed = ::close(fd_);
   fd_ = -1;
   if (closed != 0) fail("cannot write", errno);

@@ -3,6 +3,13 @@
 // final rename is atomic); commit() renames it over the target. If commit() is never
 // reached (an exception), the destructor removes the temporary file and a pre-existing
 // target is left untouched.
+//
+// The file's blocks are reserved ahead of the writes (fallocate, in steps that double up
+// to 64 MiB) and the file cut back to what was written when it closes: with delayed
+// allocation each buffered write reserves its blocks page by page and writeback then
+// allocates them, which made writing a 2.2 GiB curve here take 1.5-4.9 s against
+// 0.4-0.5 s preallocated (docs/benchmarks.md). Where the file system cannot reserve
+// (or is full), the writes go on without.
 #pragma once
 
 #include "io/binary.h"
@@ -63,6 +70,8 @@ private:
   // Writes out the buffer and closes the file (once).
   void close();
   void write_all(const char* data, size_t size);
+  // Reserves the file's blocks up to at least `end` while the file system can.
+  void reserve(uint64_t end);
   [[noreturn]] void fail(std::string_view what, int error) const;
 
   std::filesystem::path target_;
@@ -71,6 +80,10 @@ private:
   bool committed_ = false;
   std::vector<char> buffer_;
   size_t used_ = 0;
+  uint64_t offset_ = 0;   // where the next write() goes
+  uint64_t written_ = 0;  // the end of the furthest byte written: the file's size
+  uint64_t reserved_ = 0; // the file's size as fallocate left it
+  bool reserving_ = true;
 };
 
 } // namespace meander::io
