@@ -16,6 +16,18 @@ Box3 bounding_box(std::span<const Vec3> points) {
   return box;
 }
 
+Vec3 centroid(std::span<const Vec3> positions, std::span<const int32_t> face) {
+  double x = 0, y = 0, z = 0;
+  for (const int32_t v : face) {
+    const Vec3 p = positions[size_t(v)];
+    x += p.x;
+    y += p.y;
+    z += p.z;
+  }
+  const double n = double(face.size());
+  return {float(x / n), float(y / n), float(z / n)};
+}
+
 std::vector<Vec3> vertex_normals(const PolygonMesh& mesh) {
   std::vector<std::array<double, 3>> sum(mesh.positions.size(), {0, 0, 0});
   for (int32_t f = 0; f < mesh.num_faces(); ++f) {

@@ -3,6 +3,7 @@
 #include "meander/connectivity.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/star_polygons.h"
 
 #include <chrono>
 #include <optional>
@@ -42,13 +43,21 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
   Stopwatch watch(times);
   CurveResult result;
-  if (job.cap_flips) {
-    CapFlips flipped = flip_caps(std::move(mesh), *job.cap_flips);
-    mesh = std::move(flipped.mesh);
-    result.cap_flips = flipped.flips;
-    result.cap_cuts = flipped.cuts;
-    if (flipped.flips + flipped.cuts > 0) connectivity = Connectivity(); // flips keep the sizes: not caught below
-    watch.lap("flip caps");
+  if (job.slab_mesh) {
+    if (job.slab_mesh->star_sides > 0) {
+      StarredPolygons starred = star_polygons(std::move(mesh), job.slab_mesh->star_sides);
+      mesh = std::move(starred.mesh);
+      result.stars = starred.stars;
+    }
+    if (job.slab_mesh->caps) {
+      CapFlips flipped = flip_caps(std::move(mesh), *job.slab_mesh->caps);
+      mesh = std::move(flipped.mesh);
+      result.cap_flips = flipped.flips;
+      result.cap_cuts = flipped.cuts;
+    }
+    // Flips keep the sizes, which the check below would not catch.
+    if (result.stars + result.cap_flips + result.cap_cuts > 0) connectivity = Connectivity();
+    watch.lap("slab mesh");
   }
   if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {
     connectivity = build_connectivity(mesh);

@@ -19,18 +19,6 @@ void require_manifold_edges(const Connectivity& c) {
                           std::to_string(c.edge_degree(e)) + " faces: mesh is not manifold");
 }
 
-Vec3 face_centroid(const PolygonMesh& mesh, std::span<const Vec3> positions, int32_t f) {
-  double x = 0, y = 0, z = 0;
-  for (int32_t v : mesh.face(f)) {
-    const Vec3 p = positions[size_t(v)];
-    x += p.x;
-    y += p.y;
-    z += p.z;
-  }
-  const double n = mesh.face_size(f);
-  return {float(x / n), float(y / n), float(z / n)};
-}
-
 // A triangle's face point is its incentre, any other face's its centroid. A needle's
 // centroid lies almost on its long sides, so the dual-of-Simplest triangles on them are
 // flat (an angle near 180 degrees at the face point) and the cycle turns back inside
@@ -38,7 +26,7 @@ Vec3 face_centroid(const PolygonMesh& mesh, std::span<const Vec3> positions, int
 // facing side e is 90 degrees plus half the face's angle opposite e: below 135 degrees
 // unless the face is obtuse (caps: flip_caps.h).
 Vec3 face_point(const PolygonMesh& mesh, std::span<const Vec3> positions, int32_t f) {
-  if (mesh.face_size(f) != 3) return face_centroid(mesh, positions, f);
+  if (mesh.face_size(f) != 3) return centroid(positions, mesh.face(f));
   const auto v = mesh.face(f);
   const Vec3 a = positions[size_t(v[0])], b = positions[size_t(v[1])], c = positions[size_t(v[2])];
   // Each corner weighted by the length of the side opposite it.
@@ -163,7 +151,7 @@ QuadMesh catmull_clark_quads(const PolygonMesh& mesh, const Connectivity& c) {
     const auto [u, v] = c.edge_vertices[size_t(e)];
     out.positions.push_back((mesh.positions[size_t(u)] + mesh.positions[size_t(v)]) * 0.5f);
   }
-  for (int32_t f = 0; f < nf; ++f) out.positions.push_back(face_centroid(mesh, mesh.positions, f));
+  for (int32_t f = 0; f < nf; ++f) out.positions.push_back(centroid(mesh.positions, mesh.face(f)));
   out.face_vertices.reserve(size_t(mesh.num_corners()) * 4);
   out.face_start.reserve(size_t(mesh.num_corners()) + 1);
   for (int32_t f = 0; f < nf; ++f) {

@@ -312,7 +312,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   }
   const bool variable = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon;
   CurveJob curve_job = params.job;
-  if (variable) curve_job.cap_flips = CapFlipOptions{}; // as `meander wire --method variable`
+  if (variable) curve_job.slab_mesh = SlabMeshOptions{}; // as `meander wire --method variable`
   result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, curve_job);
   result.curve_length = total_length(result.curve.curves);
   const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
@@ -396,6 +396,7 @@ std::string studio_stats_json(const StudioResult& result) {
       stats["printable"] = r.printable();
       stats["surface_crossings"] = result.surface_crossings;
     }
+    stats["stars"] = result.curve.stars;
     stats["cap_flips"] = result.curve.cap_flips;
     stats["cap_cuts"] = result.curve.cap_cuts;
     if (result.radius > 0) stats["radius"] = result.radius;

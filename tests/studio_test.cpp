@@ -144,8 +144,8 @@ TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(clear))["surface_crossings"], 0);
 }
 
-// The variable modes flip caps first, as `meander wire --method variable` does, and say
-// how many; the other modes use the mesh as it is.
+// The variable modes split large polygons and flip caps first, as `meander wire --method
+// variable` does, and say how many; the other modes use the mesh as it is.
 TEST(Studio, VariableModesFlipCaps) {
   const StudioSurface cap = load_studio_surface("cap.obj", "v 0 0 0\nv 2 0 0\nv 1 0.05 0\nv 1 -1 0\nf 1 2 3\nf 2 1 4\n");
   for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::constant_ribbon}) {
@@ -154,6 +154,12 @@ TEST(Studio, VariableModesFlipCaps) {
     EXPECT_EQ(r.curve.cap_flips, variable ? 1 : 0);
     EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["cap_flips"], r.curve.cap_flips);
   }
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto path = test::shared_meshes() / "genus3hexa1.obj";
+  const StudioSurface hexagons = load_studio_surface(path.filename().string(), test::read_file(path));
+  const StudioResult r = make_studio_result(hexagons, {.mode = StudioMode::variable_ribbon, .levels = 0, .preview = true});
+  EXPECT_EQ(r.curve.stars, 82);
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["stars"], 82);
 }
 
 // The session's last result lends its atlas to the next duotone only for the same tile

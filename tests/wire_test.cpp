@@ -154,7 +154,7 @@ TEST(Wire, VariableWireOnAScanIsClearOnceItsCapsAreFlipped) {
   MEANDER_REQUIRE_SHARED_MESHES();
   PolygonMesh bunny = repair(read_mesh(test::shared_meshes() / "stanford-bunny_original_holes.obj"), "bunny").mesh;
   const CurveResult curve =
-      make_curve(std::move(bunny), {.cap_flips = CapFlipOptions{}, .cycle = {.tree = TreeStrategy::shaped}, .sample = false});
+      make_curve(std::move(bunny), {.slab_mesh = SlabMeshOptions{}, .cycle = {.tree = TreeStrategy::shaped}, .sample = false});
   EXPECT_GT(curve.cap_flips, 100);
   EXPECT_TRUE(variable_wire(curve.quads, curve.cycle, {.levels = 0}).clear);
 }

@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace meander::cli {
 
@@ -26,6 +28,7 @@ struct WireArgs {
   PictureArgs picture;
   int sides = 8, levels = 2;
   double s = 0.6, t = 0.6, thickness = 0, cap_angle = 120;
+  bool keep_faces = false;
   bool strict = false, verbose = false;
 };
 
@@ -42,7 +45,11 @@ std::optional<double> parse_radius(const std::string& text) {
 void run_wire(const WireArgs& a) {
   const bool constant = a.method == "constant";
   CurveJob job = curve_job(a.curve);
-  if (!constant && a.cap_angle < 180) job.cap_flips = CapFlipOptions{.cap_angle_degrees = a.cap_angle};
+  if (!constant && !a.keep_faces) {
+    job.slab_mesh = SlabMeshOptions{};
+    if (a.cap_angle < 180) job.slab_mesh->caps->cap_angle_degrees = a.cap_angle;
+    else job.slab_mesh->caps.reset();
+  }
   const WireShape shape = parse_wire_shape(a.shape);
   const std::optional<double> radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
@@ -58,14 +65,21 @@ void run_wire(const WireArgs& a) {
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
-  if (curve.cap_flips + curve.cap_cuts > 0) {
+  if (curve.stars + curve.cap_flips + curve.cap_cuts > 0) {
     const auto count = [](int64_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-    std::string done;
-    if (curve.cap_flips > 0) done = "flipped " + count(curve.cap_flips, "edge", "edges");
+    std::vector<std::string> done;
+    if (curve.stars > 0)
+      done.push_back("split " + count(curve.stars, "polygon", "polygons") + " of 5 or more sides into triangles around " +
+                     (curve.stars == 1 ? "its centre" : "their centres"));
+    char angle[32];
+    std::snprintf(angle, sizeof angle, "%g", a.cap_angle);
+    if (curve.cap_flips > 0) done.push_back("flipped " + count(curve.cap_flips, "edge", "edges") + " facing an angle over " + angle + " degrees");
     if (curve.cap_cuts > 0)
-      done += (done.empty() ? "" : " and ") + ("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " on the boundary");
-    std::fprintf(stderr, "%s: note: %s (triangles with an angle over %g degrees fold the slabs; --cap-angle 180 keeps them)\n",
-                 a.input.c_str(), done.c_str(), a.cap_angle);
+      done.push_back("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " with an angle over " + angle + " degrees on the boundary");
+    std::string said = done[0];
+    for (size_t k = 1; k < done.size(); ++k) said += (k + 1 == done.size() ? " and " : ", ") + done[k];
+    std::fprintf(stderr, "%s: note: %s, where the slabs would fold (--keep-faces keeps the mesh as it is)\n", a.input.c_str(),
+                 said.c_str());
   }
 
   PolygonMesh wire;
@@ -140,8 +154,10 @@ Command add_wire_command(CLI::App& parent) {
   app->add_option("--t", args->t, "variable: trapezoid size along the curve, 0..1")->check(CLI::Range(0.0, 1.0))->capture_default_str();
   app->add_option("--thickness", args->thickness, "variable wire: slab thickness in mesh units (0: half the local ribbon width)")->check(CLI::NonNegativeNumber)->capture_default_str();
   app->add_option("--cap-angle", args->cap_angle, "variable: first flip the long edge of flat triangles whose largest "
-                                                  "angle exceeds this many degrees (180: keep the mesh as it is)")
+                                                  "angle exceeds this many degrees (180: flip none)")
       ->check(CLI::Range(90.0, 180.0))->capture_default_str();
+  app->add_flag("--keep-faces", args->keep_faces, "variable: build on the mesh's faces as they are, without splitting "
+                                                  "polygons of 5 or more sides into triangles or flipping flat triangles");
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--report", args->report, "also write the printability report (.json)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the result to this picture (.png); a wire's surface hides its back parts");

@@ -61,6 +61,9 @@ struct PolygonMesh {
   void add_face(std::initializer_list<int32_t> vertices) { add_face(std::span(vertices.begin(), vertices.size())); }
 };
 
+// The mean of a face's corners, `face` indexing `positions` (in double, rounded once).
+Vec3 centroid(std::span<const Vec3> positions, std::span<const int32_t> face);
+
 // Area-weighted vertex normals of the polygons fanned from their first vertex, unit
 // length; a vertex without area around it gets +z (glTF requires unit normals). GLB
 // files and the studio's view shade with them.

@@ -19,14 +19,21 @@ namespace meander {
 
 enum class Quadrangulation { dual_simplest, catmull_clark, none };
 
+// Polygons of star_sides or more vertices split into stars of triangles
+// (star_polygons.h; 0: none), then the caps flipped as `caps` says (flip_caps.h).
+struct SlabMeshOptions {
+  int star_sides = 5;
+  std::optional<CapFlipOptions> caps = CapFlipOptions{};
+};
+
 // Parses "dual-simplest" | "catmull-clark" | "none"; throws UsageError otherwise.
 Quadrangulation parse_quadrangulation(std::string_view name);
 
 struct CurveJob {
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
-  // Set: flip_caps() runs on the mesh first (what `wire --method variable` does, whose
-  // slabs fold in caps); none: the mesh is used as it is.
-  std::optional<CapFlipOptions> cap_flips;
+  // Set: the mesh is made ready for a variable wire's slabs first, which fold in flat
+  // triangles (what `wire --method variable` does); none: it is used as it is.
+  std::optional<SlabMeshOptions> slab_mesh;
   CycleOptions cycle;
   CurveOptions curve;
   // false: leave CurveResult::curves empty, for a caller that writes them to `output`
@@ -45,7 +52,8 @@ struct CurveResult {
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
   int64_t points_written = 0; // to CurveJob::output
-  int64_t cap_flips = 0, cap_cuts = 0; // by CurveJob::cap_flips: edges flipped, caps cut off
+  // By CurveJob::slab_mesh: polygons split, edges flipped, caps cut off the boundary.
+  int64_t stars = 0, cap_flips = 0, cap_cuts = 0;
 };
 
 // Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh

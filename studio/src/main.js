@@ -339,8 +339,9 @@ function showStats(stats) {
     if (stats.surface_crossings > 0) {
       rows.push(['surface', `crosses itself (${stats.surface_crossings.toLocaleString()} of the cycle's triangles): a wire that follows it cannot be clear there`]);
     }
-    // As `meander wire --method variable` notes: the mesh it was made on had caps flipped
-    // (or cut off on the boundary).
+    // As `meander wire --method variable` notes: the mesh it was made on had large polygons
+    // split and caps flipped (or cut off on the boundary).
+    if (stats.stars > 0) rows.push(['polygons split', `${stats.stars.toLocaleString()} of 5 or more sides, into triangles`]);
     if (stats.cap_flips > 0) rows.push(['caps flipped', `${stats.cap_flips.toLocaleString()} edges (flat triangles fold the slabs)`]);
     if (stats.cap_cuts > 0) rows.push(['caps cut off', `${stats.cap_cuts.toLocaleString()} triangles on the boundary`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
