@@ -24,3 +24,6 @@ done
 # A coarse CAD-like mesh whose rectangles make slivers: the variable wire on the shaped tree.
 "$MEANDER" wire "$MESHES/beveledcube.obj" -o "$OUT/cube.stl" --method variable \
   --png images/wire_beveledcube_variable.png --size 300x300 --view 30,25
+# Warped hexagons of a genus-3 mesh, split into stars of triangles before the slabs.
+"$MEANDER" wire "$MESHES/genus3hexa1.obj" -o "$OUT/genus3.stl" --method variable \
+  --png images/wire_genus3hexa1_variable.png --size 400x320 --view 20,30
