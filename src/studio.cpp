@@ -249,7 +249,15 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
     }
     return corners;
   };
-  const int64_t cycle = 2 * quads(params.job.quadrangulation); // triangles the cycle visits
+  int64_t cycle = 2 * quads(params.job.quadrangulation); // triangles the cycle visits
+  if (params.mode == StudioMode::variable_wire || params.mode == StudioMode::variable_ribbon) {
+    // The slab mesh splits a polygon of n >= 5 sides into a star: n more edges (dual of
+    // Simplest's quads), 2n more corners (Catmull-Clark's).
+    const int star_sides = SlabMeshOptions{}.star_sides;
+    const int64_t per_side = params.job.quadrangulation == Quadrangulation::catmull_clark ? 4 : 2;
+    for (int32_t f = 0; f < mesh.num_faces(); ++f)
+      if (mesh.face_size(f) >= star_sides) cycle += per_side * mesh.face_size(f);
+  }
   const int64_t level_factor = int64_t(1) << (2 * params.levels);
   switch (params.mode) {
   case StudioMode::duotone: {

@@ -205,6 +205,16 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   StudioParams many{.mode = StudioMode::curve};
   many.job.curve.samples = 1000;
   EXPECT_EQ(studio_result_size(surface, many), 250 * studio_result_size(surface, {.mode = StudioMode::curve}));
+  // The variable modes split polygons of 5 or more sides into stars first.
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto path = test::shared_meshes() / "genus3hexa1.obj";
+  const StudioSurface hexagons = load_studio_surface(path.filename().string(), test::read_file(path));
+  for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon})
+    for (const char* quad : {"dual-simplest", "catmull-clark"}) {
+      StudioParams params{.mode = mode, .levels = 0};
+      params.job.quadrangulation = parse_quadrangulation(quad);
+      EXPECT_EQ(studio_result_size(hexagons, params), make_studio_result(hexagons, params).triangles) << quad;
+    }
 }
 
 // A preview that 2 curve samples would make larger than its budget (2.5M elements) takes
