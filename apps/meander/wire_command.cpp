@@ -69,8 +69,8 @@ void run_wire(const WireArgs& a) {
     const auto count = [](int64_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
     std::vector<std::string> done;
     if (curve.stars > 0)
-      done.push_back("split " + count(curve.stars, "polygon", "polygons") + " of 5 or more sides into triangles around " +
-                     (curve.stars == 1 ? "its centre" : "their centres"));
+      done.push_back("split " + count(curve.stars, "polygon", "polygons") + " of " + std::to_string(job.slab_mesh->star_sides) +
+                     " or more sides into triangles around " + (curve.stars == 1 ? "its centre" : "their centres"));
     char angle[32];
     std::snprintf(angle, sizeof angle, "%g", a.cap_angle);
     if (curve.cap_flips > 0) done.push_back("flipped " + count(curve.cap_flips, "edge", "edges") + " facing an angle over " + angle + " degrees");
