@@ -5,7 +5,14 @@
 #include "union_find.h"
 
 #include <algorithm>
+#include <array>
+#include <numeric>
+#include <span>
 #include <string>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace meander {
 
@@ -59,47 +66,132 @@ Adjacency build_adjacency(const Graph& g) {
   return a;
 }
 
-// Kruskal over the edges in random order, or with `ranked` by increasing Graph::rank and
-// in random order within a rank.
-std::vector<int32_t> kruskal_random(const Graph& g, Random& rng, bool ranked) {
-  // Shuffling the edges themselves (not their ids) lets the loop below read them in
-  // order and ask for the union-find entries of edges a few steps ahead, so the cache
-  // misses of the random order overlap instead of queueing.
-  struct Edge {
-    int32_t u, v, id;
-  };
-  // A uniform shuffle in two cache-friendly steps: scatter every edge into one of a few
-  // hundred buckets chosen at random (a few sequential write streams), then shuffle each
-  // bucket, small enough to stay in cache. Random bucket sizes and uniform shuffles
-  // inside them make every order equally likely, like one Fisher-Yates pass, without its
-  // cache miss per swap. Ranked, each rank has its own run of buckets.
-  constexpr uint32_t buckets = 256;
+// One Borůvka round: adds each node's lightest edge under `weight` (distinct per edge) to
+// `forest`, and labels the nodes 0, 1, ... by the trees those edges make. Returns the
+// number of labels.
+template <typename Weight>
+int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>& label, std::vector<int32_t>& forest) {
+  const int32_t n = g.num_nodes;
+  std::fill(label.begin(), label.end(), -1); // first each node's lightest edge
+  for (int32_t e = 0; e < int32_t(g.edges.size()); ++e) {
+    const auto [u, v] = g.edges[size_t(e)];
+    if (u == v) continue;
+    const uint64_t w = weight(e);
+    for (const int32_t x : {u, v})
+      if (label[size_t(x)] < 0 || w < weight(label[size_t(x)])) label[size_t(x)] = e;
+  }
+  UnionFind sets(n);
+  for (int32_t x = 0; x < n; ++x)
+    if (const int32_t e = label[size_t(x)]; e >= 0 && sets.unite(g.edges[size_t(e)][0], g.edges[size_t(e)][1]))
+      forest.push_back(e);
+  int32_t trees = 0;
+  for (int32_t x = 0; x < n; ++x)
+    if (sets.is_root(x)) label[size_t(x)] = trees++;
+  for (int32_t x = 0; x < n; ++x)
+    if (!sets.is_root(x)) label[size_t(x)] = label[size_t(sets.find(x))];
+  return trees;
+}
+
+// Kruskal over the edges in the order of random keys, or with `ranked` by increasing
+// Graph::rank and by random key within a rank: the minimum spanning forest of those
+// weights (ties by edge id), so every seed's tree is that of a random permutation.
+// On a large graph a Borůvka round comes first: each node takes its lightest edge, which
+// is always in the minimum forest, in one pass over the edges in their own order
+// (neighbouring faces have nearby ids, so this is nearly sequential). That contracts the
+// graph to about a third of its nodes, and Kruskal over the edges left then finds in a
+// union-find a third the size: on a 10M-face mesh 12 MB, which the cache holds, instead
+// of 40 MB, which it does not. Below Graph::contract_from nodes the union-find fits the
+// cache anyway and the round costs more than it saves. Either way the forest is the same.
+std::vector<int32_t> kruskal_random(const Graph& g, uint64_t seed, bool ranked) {
   const size_t m = g.edges.size();
   ranked = ranked && !g.rank.empty();
   if (ranked && g.rank.size() != m)
     throw UsageError("spanning tree: " + std::to_string(g.rank.size()) + " ranks for " + std::to_string(m) + " edges");
-  constexpr uint32_t per_rank = buckets / Graph::max_rank;
-  std::vector<uint8_t> bucket_of(m);
-  std::vector<size_t> start(buckets + 1, 0);
-  for (size_t i = 0; i < m; ++i) {
-    if (ranked && g.rank[i] >= Graph::max_rank)
-      throw UsageError("spanning tree: edge " + std::to_string(i) + " has rank " + std::to_string(g.rank[i]) + " (at most " +
-                       std::to_string(Graph::max_rank - 1) + ")");
-    bucket_of[i] = uint8_t(ranked ? g.rank[i] * per_rank + rng.below(per_rank) : rng.below(buckets));
-    ++start[bucket_of[i] + 1];
-  }
-  for (uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-  std::vector<Edge> order(m);
-  {
-    std::vector<size_t> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < m; ++i) order[fill[bucket_of[i]]++] = {g.edges[i][0], g.edges[i][1], int32_t(i)};
-  }
-  std::vector<uint8_t>().swap(bucket_of);
-  for (uint32_t b = 0; b < buckets; ++b)
-    for (size_t n = start[b + 1] - start[b]; n > 1; --n) std::swap(order[start[b] + n - 1], order[start[b] + rng.below(uint32_t(n))]);
-  UnionFind sets(g.num_nodes);
+  if (ranked)
+    for (size_t e = 0; e < m; ++e)
+      if (g.rank[e] >= Graph::max_rank)
+        throw UsageError("spanning tree: edge " + std::to_string(e) + " has rank " + std::to_string(g.rank[e]) +
+                         " (at most " + std::to_string(Graph::max_rank - 1) + ")");
+  // An edge's key: its rank in the top 5 bits when ranked, then random bits from a hash of
+  // the edge and the seed. Hashed rather than drawn in turn, so the keys can be made in
+  // parallel and stay the same whatever order the passes below take.
+  const uint64_t salt = Random(seed).next();
+  constexpr int rank_shift = 27;
+  static_assert(Graph::max_rank <= (1 << (32 - rank_shift)));
+  std::vector<uint32_t> keys(m);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t e = r.begin(); e < r.end(); ++e) {
+      const uint32_t random = uint32_t(Random(salt ^ (uint64_t(e) * 0xd1b54a32d192ed03ULL)).next() >> 32);
+      keys[e] = ranked ? uint32_t(g.rank[e]) << rank_shift | random >> (32 - rank_shift) : random;
+    }
+  });
+  auto key = [&](int32_t e) { return keys[size_t(e)]; };
+  auto weight = [&](int32_t e) { return uint64_t(key(e)) << 32 | uint32_t(e); };
+
+  const int32_t n = g.num_nodes;
   std::vector<int32_t> forest;
-  forest.reserve(size_t(g.num_nodes));
+  forest.reserve(size_t(n));
+  std::vector<int32_t> label(static_cast<size_t>(n));
+  int32_t contracted = n;
+  if (n < Graph::contract_from)
+    std::iota(label.begin(), label.end(), 0);
+  else
+    contracted = boruvka_round(g, weight, label, forest);
+
+  // The edges between contracted nodes in increasing weight: scattered by the top byte of
+  // their key into 256 buckets (a few sequential write streams), then each bucket, small
+  // enough for the cache, sorted by the other three bytes in stable radix passes. The
+  // edges enter in id order, so ties stay in id order, as in `weight`.
+  struct Edge {
+    int32_t u, v, id;
+    uint32_t key;
+  };
+  constexpr int buckets = 256;
+  // In parallel over fixed runs of edge ids, each run writing after the runs before it in
+  // every bucket: the same order whatever the number of threads.
+  constexpr size_t runs = 16;
+  const size_t run_length = (m + runs - 1) / runs;
+  std::vector<std::array<size_t, buckets>> at(runs);
+  auto for_runs = [&](auto&& body) {
+    tbb::parallel_for(size_t(0), runs, [&](size_t r) {
+      for (size_t e = r * run_length; e < std::min(m, (r + 1) * run_length); ++e) {
+        const int32_t u = label[size_t(g.edges[e][0])], v = label[size_t(g.edges[e][1])];
+        if (u != v) body(at[r], int32_t(e), u, v);
+      }
+    });
+  };
+  for_runs([&](std::array<size_t, buckets>& count, int32_t e, int32_t, int32_t) { ++count[key(e) >> 24]; });
+  std::vector<size_t> start(buckets + 1, 0);
+  for (int b = 0; b < buckets; ++b) {
+    start[size_t(b) + 1] = start[size_t(b)];
+    for (auto& count : at) start[size_t(b) + 1] += std::exchange(count[size_t(b)], start[size_t(b) + 1]);
+  }
+  std::vector<Edge> order(start.back());
+  for_runs([&](std::array<size_t, buckets>& fill, int32_t e, int32_t u, int32_t v) {
+    const uint32_t k = key(e);
+    order[fill[k >> 24]++] = {u, v, e, k};
+  });
+  std::vector<int32_t>().swap(label);
+  std::vector<uint32_t>().swap(keys);
+  tbb::parallel_for(tbb::blocked_range<int>(0, buckets), [&](const tbb::blocked_range<int>& range) {
+    std::vector<Edge> spare;
+    for (int b = range.begin(); b < range.end(); ++b) {
+      const std::span<Edge> edges(order.data() + start[size_t(b)], start[size_t(b) + 1] - start[size_t(b)]);
+      spare.resize(edges.size());
+      std::span<Edge> from = edges, to(spare);
+      for (int shift = 0; shift < 24; shift += 8) {
+        std::array<size_t, 257> place{};
+        for (const Edge& x : from) ++place[((x.key >> shift) & 0xff) + 1];
+        for (int d = 0; d < 256; ++d) place[size_t(d) + 1] += place[size_t(d)];
+        for (const Edge& x : from) to[place[(x.key >> shift) & 0xff]++] = x;
+        std::swap(from, to);
+      }
+      // Three passes leave the sorted edges in the spare buffer.
+      std::copy(from.begin(), from.end(), edges.begin());
+    }
+  });
+
+  UnionFind sets(contracted);
   constexpr size_t ahead = 8;
   for (size_t i = 0; i < order.size(); ++i) {
     if (i + ahead < order.size()) {
@@ -220,8 +312,8 @@ std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, 
   Random rng(seed);
   std::vector<int32_t> forest;
   switch (strategy) {
-  case TreeStrategy::random: forest = kruskal_random(graph, rng, false); break;
-  case TreeStrategy::shaped: forest = kruskal_random(graph, rng, true); break;
+  case TreeStrategy::random: forest = kruskal_random(graph, seed, false); break;
+  case TreeStrategy::shaped: forest = kruskal_random(graph, seed, true); break;
   case TreeStrategy::uniform: forest = wilson(graph, rng); break;
   case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
   case TreeStrategy::dfs: forest = depth_first(graph, rng); break;

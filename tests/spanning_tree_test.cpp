@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <numeric>
 
 namespace meander {
@@ -131,6 +132,68 @@ TEST(SpanningTree, ShapedTreeIsAMinimumSpanningForestByRank) {
   EXPECT_GT(weight(spanning_forest(g, TreeStrategy::random, 1)), weight(reference));
   g.rank.pop_back();
   EXPECT_THROW(spanning_forest(g, TreeStrategy::shaped, 1), UsageError);
+}
+
+// The random tree is the minimum spanning tree of independent random weights, built from
+// a Borůvka round and Kruskal on what it leaves: on a cycle that tree leaves out the
+// heaviest edge, each edge equally often. A round that favoured low ids, or keys that
+// depended on the order of the passes, would skew the counts. 6000 seeds: each count is
+// 1000 on average with a standard deviation of 29, so the bounds are 5 deviations wide.
+TEST(SpanningTree, RandomTreeOnACycleLeavesOutEachEdgeEquallyOften) {
+  Graph g;
+  g.num_nodes = 6;
+  for (int32_t i = 0; i < 6; ++i) g.edges.push_back({i, (i + 1) % 6});
+  for (const TreeStrategy s : {TreeStrategy::random, TreeStrategy::shaped}) {
+    SCOPED_TRACE(std::string(to_string(s)));
+    std::array<int, 6> left_out{};
+    for (uint64_t seed = 1; seed <= 6000; ++seed) {
+      const std::vector<int32_t> forest = spanning_forest(g, s, seed);
+      ASSERT_EQ(forest.size(), 5u);
+      int32_t missing = 0;
+      while (missing < 5 && forest[size_t(missing)] == missing) ++missing;
+      ++left_out[size_t(missing)];
+    }
+    for (int e = 0; e < 6; ++e) {
+      EXPECT_GT(left_out[size_t(e)], 855) << "edge " << e;
+      EXPECT_LT(left_out[size_t(e)], 1145) << "edge " << e;
+    }
+  }
+}
+
+// From Graph::contract_from nodes on, the random and shaped forests start with a Borůvka
+// round. Disjoint 6-cycles make a graph that large in which every cycle repeats the test
+// above: the random forest leaves out each of a cycle's edges equally often (about 58,000
+// times each, standard deviation 220), and the shaped one an edge of the cycle's highest
+// rank, as a minimum spanning forest must.
+TEST(SpanningTree, BoruvkaRoundKeepsTheForestOfARandomOrder) {
+  const int32_t cycles = Graph::contract_from / 6 + 1;
+  Graph g;
+  g.num_nodes = 6 * cycles;
+  for (int32_t c = 0; c < cycles; ++c)
+    for (int32_t i = 0; i < 6; ++i) g.edges.push_back({6 * c + i, 6 * c + (i + 1) % 6});
+  for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t((e * 7919) % 11 % 3));
+  // The edge each cycle leaves out, by its place in the cycle.
+  auto left_out = [&](const std::vector<int32_t>& forest) {
+    EXPECT_EQ(forest.size(), 5 * size_t(cycles));
+    std::vector<int> missing(size_t(cycles), -1);
+    std::vector<uint8_t> in_forest(g.edges.size(), 0);
+    for (int32_t e : forest) in_forest[size_t(e)] = 1;
+    for (size_t e = 0; e < g.edges.size(); ++e)
+      if (!in_forest[e]) {
+        EXPECT_EQ(missing[e / 6], -1) << "cycle " << e / 6 << " lost two edges";
+        missing[e / 6] = int(e % 6);
+      }
+    return missing;
+  };
+  std::array<int, 6> count{};
+  for (int place : left_out(spanning_forest(g, TreeStrategy::random, 7))) ++count[size_t(place)];
+  for (int place = 0; place < 6; ++place) EXPECT_NEAR(count[size_t(place)], cycles / 6.0, 1500) << "place " << place;
+  const std::vector<int> shaped = left_out(spanning_forest(g, TreeStrategy::shaped, 7));
+  for (int32_t c = 0; c < cycles; ++c) {
+    uint8_t highest = 0;
+    for (int i = 0; i < 6; ++i) highest = std::max(highest, g.rank[6 * size_t(c) + size_t(i)]);
+    ASSERT_EQ(g.rank[6 * size_t(c) + size_t(shaped[size_t(c)])], highest) << "cycle " << c;
+  }
 }
 
 TEST(SpanningTree, ParsesNamesAndRefusesOthers) {
