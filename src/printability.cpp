@@ -466,8 +466,12 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
 
 } // namespace
 
+bool PrintabilityReport::too_thin() const {
+  return required_thickness > 0 && !(thickness_checked && min_thickness >= required_thickness);
+}
+
 bool PrintabilityReport::printable() const {
-  return watertight && !self_intersecting &&
+  return watertight && !self_intersecting && !too_thin() &&
          std::all_of(components.begin(), components.end(), [](const SolidComponent& k) { return k.volume > 0; });
 }
 
@@ -480,7 +484,11 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
       if (!is_finite(mesh.positions[size_t(v)]))
         throw InputError("mesh: vertex " + std::to_string(v) + " (used by face " + std::to_string(f) +
                          ") has a non-finite position");
+  if (!(options.required_thickness >= 0) || !std::isfinite(options.required_thickness))
+    throw UsageError("required thickness " + std::to_string(options.required_thickness) +
+                     ": expected a finite number, 0 or more");
   PrintabilityReport report;
+  report.required_thickness = options.required_thickness;
   report.vertices = mesh.num_vertices();
   report.faces = mesh.num_faces();
   report.boundary_edges = topology.boundary_edges;
@@ -579,6 +587,8 @@ std::string printability_json(const PrintabilityReport& r) {
       r.self_intersecting ? Json::array({r.first_intersection[0], r.first_intersection[1]}) : Json(nullptr);
   j["min_thickness"] = r.thickness_checked ? finite_or_null(r.min_thickness) : Json(nullptr);
   j["thinnest_vertex"] = r.thinnest_vertex >= 0 ? Json(r.thinnest_vertex) : Json(nullptr);
+  j["required_thickness"] = r.required_thickness > 0 ? Json(r.required_thickness) : Json(nullptr);
+  j["too_thin"] = r.required_thickness > 0 ? Json(r.too_thin()) : Json(nullptr);
   j["bounding_box"] = r.bounding_box.empty() ? Json(nullptr)
                                              : Json{{"min", point(r.bounding_box.min)}, {"max", point(r.bounding_box.max)}};
   Json components = Json::array();
@@ -590,6 +600,16 @@ std::string printability_json(const PrintabilityReport& r) {
   j["components"] = components;
   return j.dump(2);
 }
+
+namespace {
+
+// Up to three significant digits, so that the printed factor is never short of x.
+double round_up(double x) {
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2);
+  return std::ceil(x / unit) * unit;
+}
+
+} // namespace
 
 std::string printability_summary(const PrintabilityReport& r) {
   char text[256];
@@ -629,6 +649,16 @@ std::string printability_summary(const PrintabilityReport& r) {
     s += ", thickness not measured (open mesh)";
   } else if (std::isfinite(r.min_thickness)) {
     std::snprintf(text, sizeof text, ", minimum thickness %.4g (at vertex %d)", r.min_thickness, r.thinnest_vertex);
+    s += text;
+  }
+  if (r.required_thickness > 0) {
+    if (!r.thickness_checked)
+      std::snprintf(text, sizeof text, ", so not known to be %.4g thick as required", r.required_thickness);
+    else if (r.too_thin()) // scaling the whole model is the one change that always thickens it enough
+      std::snprintf(text, sizeof text, ", thinner than the %.4g required (scaled by %.3g it would do)", r.required_thickness,
+                    round_up(r.required_thickness / r.min_thickness));
+    else
+      std::snprintf(text, sizeof text, ", at least the %.4g required", r.required_thickness);
     s += text;
   }
   if (!r.bounding_box.empty()) {

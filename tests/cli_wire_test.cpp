@@ -205,6 +205,33 @@ TEST(CliWireOutput, PngOfTheResult) {
   EXPECT_FALSE(std::filesystem::exists(dir / "none.stl"));
 }
 
+// --min-thickness judges the wire's minimum thickness in the report and the summary; the
+// wire is written either way, and the command succeeds: the report is the verdict.
+TEST(CliWireOutput, MinimumThicknessIsJudged) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  const std::string mesh = (shared_meshes() / "tetrahedron.obj").string();
+  const auto report = dir / "report.json";
+  for (const double required : {1e-4, 10.0}) {
+    const CommandResult r = run_cli({"wire", mesh, "-o", (dir / "wire.stl").string(), "--samples", "1", "--min-thickness",
+                                     std::to_string(required), "--report", report.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(read_file(report));
+    const bool thin = required > json["min_thickness"].get<double>();
+    EXPECT_EQ(json["too_thin"].get<bool>(), thin) << required;
+    EXPECT_EQ(json["printable"].get<bool>(), !thin) << required;
+    EXPECT_NE(r.err.find(thin ? "thinner than the 10 required" : "at least the 0.0001 required"), std::string::npos) << r.err;
+  }
+  const CommandResult ribbon = run_cli({"wire", mesh, "-o", (dir / "ribbon.stl").string(), "--shape", "ribbon",
+                                        "--min-thickness", "1"});
+  EXPECT_EQ(ribbon.exit_code, 2);
+  EXPECT_NE(ribbon.err.find("--min-thickness applies to wires"), std::string::npos) << ribbon.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "ribbon.stl"));
+  const CommandResult info = run_cli({"info", (dir / "wire.stl").string(), "--solid", "--min-thickness", "10"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("thinner than the 10 required"), std::string::npos) << info.out;
+}
+
 // Bad parameters are usage errors (exit 2) named on stderr, and nothing is written.
 TEST(CliWireOutput, BadParametersAreRefused) {
   MEANDER_REQUIRE_SHARED_MESHES();
@@ -218,6 +245,7 @@ TEST(CliWireOutput, BadParametersAreRefused) {
       {{"--method", "variable", "--t", "-0.5"}, "--t"},
       {{"--method", "variable", "--thickness", "-1"}, "--thickness"},
       {{"--shape", "tube"}, "--shape"},
+      {{"--min-thickness", "-0.4"}, "--min-thickness"},
   };
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"wire", mesh, "-o", out};

@@ -91,6 +91,31 @@ TEST(Printability, CubeIsAPrintableSolid) {
   EXPECT_TRUE(r.printable());
 }
 
+// A required thickness judges the measured one: the unit cube is sqrt(3) thick from its
+// corners, so it passes 1.7 and fails 1.8, and the summary says by how much to scale it
+// (1.8 / 1.732 = 1.0392, rounded up to 1.04 so the factor is never short).
+TEST(Printability, RequiredThicknessJudgesTheMinimum) {
+  const PrintabilityReport thick = check_printability(cube_at({0, 0, 0}), {.required_thickness = 1.7});
+  EXPECT_FALSE(thick.too_thin());
+  EXPECT_TRUE(thick.printable());
+  EXPECT_NE(printability_summary(thick).find(", at least the 1.7 required"), std::string::npos) << printability_summary(thick);
+  const PrintabilityReport thin = check_printability(cube_at({0, 0, 0}), {.required_thickness = 1.8});
+  EXPECT_TRUE(thin.too_thin());
+  EXPECT_FALSE(thin.printable());
+  EXPECT_NE(printability_summary(thin).find(", thinner than the 1.8 required (scaled by 1.04 it would do)"), std::string::npos)
+      << printability_summary(thin);
+  const auto json = nlohmann::json::parse(printability_json(thin));
+  EXPECT_EQ(json["required_thickness"].get<double>(), 1.8);
+  EXPECT_TRUE(json["too_thin"].get<bool>());
+  EXPECT_FALSE(json["printable"].get<bool>());
+  // Without a requirement, thickness is reported and not judged.
+  const auto plain = nlohmann::json::parse(printability_json(check_printability(cube_at({0, 0, 0}))));
+  EXPECT_TRUE(plain["required_thickness"].is_null());
+  EXPECT_TRUE(plain["too_thin"].is_null());
+  EXPECT_THROW(check_printability(cube_at({0, 0, 0}), {.required_thickness = -1}), UsageError);
+  EXPECT_THROW(check_printability(cube_at({0, 0, 0}), {.required_thickness = NAN}), UsageError);
+}
+
 TEST(Printability, SphereVolumeAndThickness) {
   const PrintabilityReport r = check_printability(sphere(20000));
   EXPECT_TRUE(r.watertight);
@@ -425,6 +450,10 @@ TEST(Printability, ClosedRealMeshesAreWatertightWithTheirEulerCharacteristic) {
   EXPECT_FALSE(open.watertight);
   EXPECT_FALSE(open.thickness_checked);
   EXPECT_FALSE(open.printable());
+  // An open sheet has no thickness to measure, so none required can be met.
+  const PrintabilityReport required = check_printability(read_mesh(test::shared_meshes() / "face.obj"), {.required_thickness = 0.1});
+  EXPECT_TRUE(required.too_thin());
+  EXPECT_NE(printability_summary(required).find("so not known to be 0.1 thick as required"), std::string::npos);
 }
 
 // ---------------------------------------------------------------- options, output, errors

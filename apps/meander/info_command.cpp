@@ -18,6 +18,7 @@ struct InfoArgs {
   std::string input;
   bool json = false;
   bool solid = false;
+  double min_thickness = 0;
 };
 
 std::string genus_text(const ComponentReport& c) {
@@ -104,13 +105,17 @@ Command add_info_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("info", "Describe a mesh: counts, topology per component, and every problem found");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_flag("--json", args->json, "print JSON instead of text");
-  app->add_flag("--solid", args->solid,
-                "also check it as a solid to 3D-print: watertight, volume, self-intersections, minimum thickness");
+  CLI::Option* solid_flag = app->add_flag(
+      "--solid", args->solid, "also check it as a solid to 3D-print: watertight, volume, self-intersections, minimum thickness");
+  app->add_option("--min-thickness", args->min_thickness, "with --solid: the thinnest wall the printer makes, in mesh "
+                                                          "units; thinner is reported as not printable")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(solid_flag);
   return {app, [args] {
             const PolygonMesh mesh = read_mesh(args->input);
             const MeshReport report = inspect(mesh);
             std::optional<PrintabilityReport> solid;
-            if (args->solid) solid = check_printability(mesh);
+            if (args->solid) solid = check_printability(mesh, {.required_thickness = args->min_thickness});
             if (args->json) print_json(args->input, report, solid ? &*solid : nullptr);
             else print_text(args->input, report, solid ? &*solid : nullptr);
           }};

@@ -27,7 +27,7 @@ struct WireArgs {
   CurveFlags curve;
   PictureArgs picture;
   int sides = 8, levels = 2;
-  double s = 0.6, t = 0.6, thickness = 0, cap_angle = 120;
+  double s = 0.6, t = 0.6, thickness = 0, cap_angle = 120, min_thickness = 0;
   bool keep_faces = false;
   bool strict = false, verbose = false;
 };
@@ -51,6 +51,8 @@ void run_wire(const WireArgs& a) {
     else job.slab_mesh->caps.reset();
   }
   const WireShape shape = parse_wire_shape(a.shape);
+  if (shape == WireShape::ribbon && a.min_thickness > 0)
+    throw UsageError("--min-thickness applies to wires: a ribbon is a band with no thickness to measure");
   const std::optional<double> radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
@@ -98,7 +100,8 @@ void run_wire(const WireArgs& a) {
   }
   log.lap("wire");
 
-  const PrintabilityReport report = check_printability(wire, {.known_clear = known_clear, .thickness = shape == WireShape::wire});
+  const PrintabilityReport report = check_printability(
+      wire, {.known_clear = known_clear, .thickness = shape == WireShape::wire, .required_thickness = a.min_thickness});
   log.lap("report");
   write_mesh(wire, a.output);
   log.lap("write wire");
@@ -159,6 +162,9 @@ Command add_wire_command(CLI::App& parent) {
   app->add_flag("--keep-faces", args->keep_faces, "variable: build on the mesh's faces as they are, without splitting "
                                                   "polygons of 5 or more sides into triangles or flipping flat triangles");
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
+  app->add_option("--min-thickness", args->min_thickness, "wire: the thinnest wall the printer makes, in mesh units "
+                                                          "(about twice the nozzle width); thinner is reported as not printable")
+      ->check(CLI::NonNegativeNumber);
   app->add_option("--report", args->report, "also write the printability report (.json)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the result to this picture (.png); a wire's surface hides its back parts");
   add_picture_options(*app, args->picture, "the --png picture", png);

@@ -30,6 +30,10 @@ struct PrintabilityOptions {
   // meshes only: an open sheet has no inside). Embree finds the nearest triangle hit, in
   // float (relative error ~1e-7).
   bool thickness = true;
+  // The thinnest wall the printer can make, in mesh units (about twice the nozzle width
+  // for a filament printer, a few tenths of a millimetre for resin): a mesh thinner
+  // anywhere is not printable. 0: thickness is reported, not judged.
+  double required_thickness = 0;
 };
 
 // One edge-connected component, as inspect() numbers them (by their first face).
@@ -81,8 +85,13 @@ struct PrintabilityReport {
   bool thickness_checked = false;
   double min_thickness = INFINITY;
   int32_t thinnest_vertex = -1;
+  double required_thickness = 0; // PrintabilityOptions::required_thickness
 
-  // Watertight, positive volume in every component, and no self-intersection found.
+  // A required thickness was given and the mesh is thinner somewhere, or its thickness
+  // could not be measured (an open mesh).
+  bool too_thin() const;
+  // Watertight, positive volume in every component, no self-intersection found, and not
+  // too thin.
   bool printable() const;
 };
 
