@@ -258,17 +258,21 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       if (mesh.face_size(f) >= star_sides) cycle += per_side * mesh.face_size(f);
   }
-  const int64_t level_factor = int64_t(1) << (2 * params.levels);
   switch (params.mode) {
   case StudioMode::duotone: {
     const int64_t texture = int64_t(params.tiles.texture_size) * params.tiles.texture_size / 2; // the atlas
     return 4 * quads(params.job.quadrangulation) * (int64_t(1) << (2 * params.subdivide)) + texture;
   }
   case StudioMode::curve: return cycle * params.job.curve.samples;
-  case StudioMode::constant_wire: return cycle * params.job.curve.samples * 2 * params.sides;
-  case StudioMode::constant_ribbon: return cycle * params.job.curve.samples * 2;
-  case StudioMode::variable_wire: return cycle * 16 * level_factor;
-  case StudioMode::variable_ribbon: return cycle * 4 * level_factor;
+  case StudioMode::constant_wire:
+  case StudioMode::constant_ribbon:
+    return constant_wire_triangles(cycle, {.shape = params.mode == StudioMode::constant_wire ? WireShape::wire : WireShape::ribbon,
+                                           .sides = params.sides,
+                                           .curve = params.job.curve});
+  case StudioMode::variable_wire:
+  case StudioMode::variable_ribbon:
+    return variable_wire_triangles(cycle, {.shape = params.mode == StudioMode::variable_wire ? WireShape::wire : WireShape::ribbon,
+                                           .levels = params.levels});
   }
   return 0;
 }

@@ -449,11 +449,37 @@ double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const
   return auto_radius(sweep_frames(quads, cycle, options.curve), options);
 }
 
+int64_t constant_wire_triangles(int64_t cycle_triangles, const ConstantWireOptions& options) {
+  const int64_t points = cycle_triangles * (options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples);
+  // Two triangles per quad: `sides` quads per curve point around a wire, one across a ribbon.
+  return points * 2 * (options.shape == WireShape::wire ? options.sides : 1);
+}
+
+int64_t variable_wire_triangles(int64_t cycle_triangles, const VariableWireOptions& options) {
+  // Per triangle of the cycle 8 control quads (wire) or 2 (ribbon), 4 each per level.
+  const double triangles = double(cycle_triangles) * (options.shape == WireShape::wire ? 16 : 4) * std::pow(4.0, options.levels);
+  return triangles < 0x1p62 ? int64_t(triangles) : int64_t(1) << 62;
+}
+
+namespace {
+
+// Refuses a result a mesh cannot index, before any of it is made.
+void require_indexable(int64_t triangles, const std::string& what) {
+  if (triangles > 2147483647)
+    throw UsageError(what + " would have " + std::to_string(triangles) + " triangles, more than a mesh can index (2^31 - 1)");
+}
+
+} // namespace
+
 ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
   if (options.radius && (!(*options.radius > 0) || !std::isfinite(*options.radius)))
     throw UsageError("the wire radius must be a positive number (got " + std::to_string(*options.radius) + ")");
   if (options.shape == WireShape::wire && options.sides < 3)
     throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
+  require_indexable(constant_wire_triangles(cycle.num_triangles(), options),
+                    options.shape == WireShape::wire
+                        ? "the wire of " + std::to_string(options.sides) + " sides at " + std::to_string(options.curve.samples) + " samples a segment"
+                        : "the ribbon at " + std::to_string(options.curve.samples) + " samples a segment");
   const Sweep sweep = sweep_frames(quads, cycle, options.curve);
   const double radius = options.radius ? *options.radius : auto_radius(sweep, options);
   if (!(radius > 0)) return {};
@@ -502,6 +528,9 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   if (!(options.thickness >= 0) || !std::isfinite(options.thickness))
     throw UsageError("--thickness must be 0 (automatic) or a positive number (got " + std::to_string(options.thickness) + ")");
   if (options.levels < 0) throw UsageError("--levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+  require_indexable(variable_wire_triangles(cycle.num_triangles(), options),
+                    "the variable " + std::string(options.shape == WireShape::wire ? "wire" : "ribbon") + " at " +
+                        std::to_string(options.levels) + " levels");
   const bool ribbon = options.shape == WireShape::ribbon;
   const Ladder ladder = make_ladder(quads, cycle);
 

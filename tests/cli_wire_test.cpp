@@ -232,6 +232,22 @@ TEST(CliWireOutput, MinimumThicknessIsJudged) {
   EXPECT_NE(info.out.find("thinner than the 10 required"), std::string::npos) << info.out;
 }
 
+// A wire too large for the machine's memory is refused before it is made (the kernel
+// would kill the process after minutes otherwise), naming the --levels that fits: a 12k
+// face sphere at 6 levels would be 2.4 billion triangles, more than any test machine holds.
+TEST(CliWireOutput, TooLargeForMemoryIsRefusedUpFront) {
+  const auto dir = output_dir();
+  const auto mesh = dir / "sphere.ply";
+  ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "12000", "-o", mesh.string()}).exit_code, 0);
+  const auto out = dir / "wire.ply";
+  const CommandResult r = run_cli({"wire", mesh.string(), "-o", out.string(), "--method", "variable", "--levels", "6"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("the variable wire would have"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("of memory, and this machine has"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("use --levels "), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // Bad parameters are usage errors (exit 2) named on stderr, and nothing is written.
 TEST(CliWireOutput, BadParametersAreRefused) {
   MEANDER_REQUIRE_SHARED_MESHES();

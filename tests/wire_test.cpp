@@ -351,5 +351,37 @@ TEST(Wire, BadParametersAreRefused) {
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.levels = -1}), UsageError);
 }
 
+// The sizes known before the wire is made are the sizes made, in triangles after fanning.
+TEST(Wire, TrianglesAreKnownBeforehand) {
+  const CurveResult curve = curve_of(torus(300));
+  const int64_t cycle = curve.cycle.num_triangles();
+  auto triangles = [](const PolygonMesh& m) { return check_printability(m, {.self_intersections = false, .thickness = false}).triangles; };
+  for (const WireShape shape : {WireShape::wire, WireShape::ribbon}) {
+    for (const int samples : {1, 3}) {
+      const ConstantWireOptions options{.shape = shape, .radius = 0.01, .sides = 5, .curve = {.samples = samples}};
+      EXPECT_EQ(constant_wire_triangles(cycle, options), triangles(constant_wire(curve.quads, curve.cycle, options).mesh));
+    }
+    for (const int levels : {0, 1}) {
+      const VariableWireOptions options{.shape = shape, .levels = levels};
+      EXPECT_EQ(variable_wire_triangles(cycle, options), triangles(variable_wire(curve.quads, curve.cycle, options).mesh));
+    }
+  }
+}
+
+// A wire of more triangles than a mesh can index is refused before any of it is made:
+// 36,000 triangles of the cycle at 6 levels would be 2.4 billion.
+TEST(Wire, UnindexableSizesAreRefusedUpFront) {
+  const CurveResult curve = curve_of(sphere(12000));
+  ASSERT_GT(curve.cycle.num_triangles(), 32768);
+  try {
+    variable_wire(curve.quads, curve.cycle, {.levels = 6});
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("the variable wire at 6 levels would have"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than a mesh can index"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(constant_wire(curve.quads, curve.cycle, {.radius = 0.01, .sides = 64, .curve = {.samples = 1000}}), UsageError);
+}
+
 } // namespace
 } // namespace meander

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace meander::cli {
 
 namespace {
@@ -42,6 +44,42 @@ std::optional<double> parse_radius(const std::string& text) {
   return r;
 }
 
+// Making and checking a wire takes 110 (constant wire) to 234 (variable ribbon) bytes
+// per triangle at its peak, measured on the 100k-face sphere (docs/benchmarks.md).
+constexpr double kBytesPerTriangle = 240;
+
+// Refuses, before the wire is made, one that would not fit in this machine's memory: the
+// kernel would kill the process minutes later instead, with nothing said. Names the
+// largest --levels that fits, or the options to lower.
+void require_memory_for(const WireArgs& a, int64_t triangles, int64_t cycle_triangles) {
+  const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  const auto fits = [&](int64_t n) { return double(n) * kBytesPerTriangle <= memory; };
+  if (memory <= 0 || fits(triangles)) return;
+  const auto gib = [](double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f GiB", std::ceil(bytes / double(1 << 30)));
+    return std::string(text);
+  };
+  std::string advice;
+  if (a.method == "variable") {
+    int levels = a.levels - 1;
+    const VariableWireOptions shape{.shape = parse_wire_shape(a.shape)};
+    while (levels >= 0) {
+      VariableWireOptions lower = shape;
+      lower.levels = levels;
+      if (fits(variable_wire_triangles(cycle_triangles, lower))) break;
+      --levels;
+    }
+    advice = levels >= 0 ? "use --levels " + std::to_string(levels) + " or a coarser mesh" : "use a coarser mesh";
+  } else {
+    advice = "lower --samples (" + std::to_string(a.curve.samples) + ")" +
+             (a.shape == "wire" ? " or --sides (" + std::to_string(a.sides) + ")" : std::string()) + ", or use a coarser mesh";
+  }
+  throw UsageError(a.input + ": the " + a.method + " " + a.shape + " would have " + std::to_string(triangles) +
+                   " triangles and need about " + gib(double(triangles) * kBytesPerTriangle) + " of memory, and this machine has " +
+                   gib(memory) + ": " + advice);
+}
+
 void run_wire(const WireArgs& a) {
   const bool constant = a.method == "constant";
   CurveJob job = curve_job(a.curve);
@@ -55,6 +93,7 @@ void run_wire(const WireArgs& a) {
     throw UsageError("--min-thickness applies to wires: a ribbon is a band with no thickness to measure");
   const std::optional<double> radius = parse_radius(a.radius);
   const VariableWireOptions variable{.shape = shape, .s = a.s, .t = a.t, .thickness = a.thickness, .levels = a.levels};
+  const ConstantWireOptions constant_options{.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve};
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -84,12 +123,15 @@ void run_wire(const WireArgs& a) {
                  said.c_str());
   }
 
+  require_memory_for(a, constant ? constant_wire_triangles(curve.cycle.num_triangles(), constant_options)
+                                  : variable_wire_triangles(curve.cycle.num_triangles(), variable),
+                     curve.cycle.num_triangles());
+
   PolygonMesh wire;
   double radius_used = 0;
   bool known_clear = false;
   if (constant) {
-    ConstantWire made =
-        constant_wire(curve.quads, curve.cycle, {.shape = shape, .radius = radius, .sides = a.sides, .curve = job.curve});
+    ConstantWire made = constant_wire(curve.quads, curve.cycle, constant_options);
     if (!(made.radius > 0)) throw TopologyError(a.input + ": the curve touches itself: no wire radius avoids a self-intersection");
     wire = std::move(made.mesh);
     radius_used = made.radius;

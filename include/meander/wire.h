@@ -111,6 +111,14 @@ struct VariableWire {
 // s or t outside [0, 1], thickness < 0 or levels < 0.
 VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
 
+// The triangles constant_wire and variable_wire make from a cycle of `cycle_triangles`
+// triangles (TriangleCycle::num_triangles), known before they are made: what a caller
+// weighs against its memory (docs/benchmarks.md: a wire takes 110 to 234 bytes per
+// triangle while it is made and checked). Both functions throw UsageError when it would
+// be more than 2^31 - 1, which a mesh cannot index.
+int64_t constant_wire_triangles(int64_t cycle_triangles, const ConstantWireOptions& options);
+int64_t variable_wire_triangles(int64_t cycle_triangles, const VariableWireOptions& options);
+
 // The cycle's triangles (numbered as cycle_triangles() lists them) that cross others of
 // them: where the surface a wire follows crosses itself, so that no wire following it can
 // be clear. Empty on an embedded surface. What `meander wire` and the studio tell a
