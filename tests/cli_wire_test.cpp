@@ -234,7 +234,8 @@ TEST(CliWireOutput, MinimumThicknessIsJudged) {
 
 // A wire too large for the machine's memory is refused before it is made (the kernel
 // would kill the process after minutes otherwise), naming the --levels that fits: a 12k
-// face sphere at 6 levels would be 2.4 billion triangles, more than any test machine holds.
+// face sphere at 6 levels would be 2.4 billion triangles, more than any test machine
+// holds. So is a duotone surface.
 TEST(CliWireOutput, TooLargeForMemoryIsRefusedUpFront) {
   const auto dir = output_dir();
   const auto mesh = dir / "sphere.ply";
@@ -246,6 +247,15 @@ TEST(CliWireOutput, TooLargeForMemoryIsRefusedUpFront) {
   EXPECT_NE(r.err.find("of memory, and this machine has"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("use --levels "), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // The same for a duotone surface subdivided 5 times: 300,000 quads become 300 million.
+  const auto large = dir / "large.ply";
+  ASSERT_EQ(run_cli({"generate", "sphere", "--faces", "100000", "-o", large.string()}).exit_code, 0);
+  const auto textured = dir / "duotone.obj";
+  const CommandResult d = run_cli({"duotone", large.string(), "-o", textured.string(), "--subdivide", "5"});
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.err.find("the duotone surface at --subdivide 5 would have"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("of memory, and this machine has"), std::string::npos) << d.err;
+  EXPECT_FALSE(std::filesystem::exists(textured));
 }
 
 // Bad parameters are usage errors (exit 2) named on stderr, and nothing is written.

@@ -5,7 +5,10 @@
 #include "meander/io.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include <unistd.h>
 
 namespace meander::cli {
 
@@ -53,6 +56,15 @@ void StageLog::add(std::string_view stage, double seconds) {
 
 void StageLog::note(const std::string& line) {
   if (verbose_) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+void require_memory(const std::string& input, double elements, double bytes_each,
+                    const std::function<std::string()>& what, const std::function<std::string(double memory)>& advice) {
+  const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (!(memory > 0) || elements * bytes_each <= memory) return;
+  const auto gib = [](double bytes) { return std::to_string(int64_t(std::ceil(bytes / double(1 << 30)))) + " GiB"; };
+  throw UsageError(input + ": " + what() + " and need about " + gib(elements * bytes_each) + " of memory, and this machine has " +
+                   gib(memory) + ": " + advice(memory));
 }
 
 RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces) {

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -30,6 +31,14 @@ struct CurveFlags {
 };
 void add_curve_flags(CLI::App& app, CurveFlags& flags);
 CurveJob curve_job(const CurveFlags& flags);
+
+// Refuses (UsageError, naming `input`), before it is made, a result of this many
+// elements at this many bytes each that would not fit in the machine's memory: the
+// kernel would kill the process minutes later instead, with nothing said. `what` names
+// the result ("the variable wire would have 766464000 triangles"), `advice` what to
+// change; either is called only when refusing.
+void require_memory(const std::string& input, double elements, double bytes_each,
+                    const std::function<std::string()>& what, const std::function<std::string(double memory)>& advice);
 
 // Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
 // each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.

@@ -8,6 +8,7 @@
 #include "meander/render.h"
 #include "meander/subdivide.h"
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -34,6 +35,10 @@ std::array<std::string, 2> region_paths(const std::string& text) {
   return {text.substr(0, comma), text.substr(comma + 1)};
 }
 
+// A subdivided duotone surface took 435 to 451 bytes per quad at its peak, written as
+// OBJ, on the 100k-face sphere at --subdivide 2 and 3 (docs/benchmarks.md).
+constexpr double kBytesPerQuad = 480;
+
 void run_duotone(const DuotoneArgs& a) {
   const DuotoneOptions options{.quadrangulation = parse_quadrangulation(a.quad), .rule = parse_duotone_rule(a.rule),
                                .tree = parse_tree_strategy(a.tree), .seed = a.seed};
@@ -54,6 +59,18 @@ void run_duotone(const DuotoneArgs& a) {
   const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
+  require_memory(
+      a.input, double(duotone.quads.num_quads()) * std::pow(4.0, a.subdivide), kBytesPerQuad,
+      [&] {
+        return "the duotone surface at --subdivide " + std::to_string(a.subdivide) + " would have " +
+               std::to_string(int64_t(double(duotone.quads.num_quads()) * std::pow(4.0, a.subdivide))) + " quads";
+      },
+      [&](double memory) -> std::string {
+        for (int levels = a.subdivide - 1; levels >= 0; --levels)
+          if (double(duotone.quads.num_quads()) * std::pow(4.0, levels) * kBytesPerQuad <= memory)
+            return "use --subdivide " + std::to_string(levels) + " or a coarser mesh";
+        return "use a coarser mesh";
+      });
   TexturedMesh surface = duotone_surface(duotone, tiles);
   log.lap("tiles");
   if (a.subdivide > 0) {

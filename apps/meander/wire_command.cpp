@@ -17,7 +17,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 namespace meander::cli {
 
@@ -48,36 +47,21 @@ std::optional<double> parse_radius(const std::string& text) {
 // per triangle at its peak, measured on the 100k-face sphere (docs/benchmarks.md).
 constexpr double kBytesPerTriangle = 240;
 
-// Refuses, before the wire is made, one that would not fit in this machine's memory: the
-// kernel would kill the process minutes later instead, with nothing said. Names the
-// largest --levels that fits, or the options to lower.
+// Refuses a wire that would not fit in memory, naming the largest --levels that fits or
+// the options to lower.
 void require_memory_for(const WireArgs& a, int64_t triangles, int64_t cycle_triangles) {
-  const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  const auto fits = [&](int64_t n) { return double(n) * kBytesPerTriangle <= memory; };
-  if (memory <= 0 || fits(triangles)) return;
-  const auto gib = [](double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.0f GiB", std::ceil(bytes / double(1 << 30)));
-    return std::string(text);
-  };
-  std::string advice;
-  if (a.method == "variable") {
-    int levels = a.levels - 1;
-    const VariableWireOptions shape{.shape = parse_wire_shape(a.shape)};
-    while (levels >= 0) {
-      VariableWireOptions lower = shape;
-      lower.levels = levels;
-      if (fits(variable_wire_triangles(cycle_triangles, lower))) break;
-      --levels;
-    }
-    advice = levels >= 0 ? "use --levels " + std::to_string(levels) + " or a coarser mesh" : "use a coarser mesh";
-  } else {
-    advice = "lower --samples (" + std::to_string(a.curve.samples) + ")" +
+  const auto what = [&] { return "the " + a.method + " " + a.shape + " would have " + std::to_string(triangles) + " triangles"; };
+  const auto advice = [&](double memory) -> std::string {
+    if (a.method != "variable")
+      return "lower --samples (" + std::to_string(a.curve.samples) + ")" +
              (a.shape == "wire" ? " or --sides (" + std::to_string(a.sides) + ")" : std::string()) + ", or use a coarser mesh";
-  }
-  throw UsageError(a.input + ": the " + a.method + " " + a.shape + " would have " + std::to_string(triangles) +
-                   " triangles and need about " + gib(double(triangles) * kBytesPerTriangle) + " of memory, and this machine has " +
-                   gib(memory) + ": " + advice);
+    VariableWireOptions lower{.shape = parse_wire_shape(a.shape), .levels = a.levels};
+    while (--lower.levels >= 0)
+      if (double(variable_wire_triangles(cycle_triangles, lower)) * kBytesPerTriangle <= memory)
+        return "use --levels " + std::to_string(lower.levels) + " or a coarser mesh";
+    return "use a coarser mesh";
+  };
+  require_memory(a.input, double(triangles), kBytesPerTriangle, what, advice);
 }
 
 void run_wire(const WireArgs& a) {
