@@ -623,17 +623,20 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // right above, right below), which makes the faces point out of the slab.
   const int32_t width = ribbon ? 2 : 4;
   // The clearing rounds' factors (below): of the thickness, and of the width about the rung's midpoint.
-  std::vector<float> thinned(automatic ? left.size() : 0, 1.0f), narrowed(thinned.size(), 1.0f);
+  // A ribbon of s or t = 1 covers the surface by design, its trapezoids meeting along
+  // the triangles' sides: that is not to be narrowed away.
+  const bool clearing = automatic || (ribbon && options.s < 1 && options.t < 1);
+  std::vector<float> thinned(clearing ? left.size() : 0, 1.0f), narrowed(thinned.size(), 1.0f);
   auto control_positions = [&] {
     std::vector<Vec3> positions;
     positions.reserve(left.size() * size_t(width));
     for (size_t r = 0; r < left.size(); ++r) {
+      const float n = clearing ? narrowed[r] : 1.0f;
+      const Vec3 mid = (left[r] + right[r]) * 0.5f, l = mid + (left[r] - mid) * n, rr = mid + (right[r] - mid) * n;
       if (ribbon) {
-        positions.insert(positions.end(), {left[r], right[r]});
+        positions.insert(positions.end(), {l, rr});
       } else {
         const Vec3 h = up[r] * (half_thickness(r) * (automatic ? thinned[r] : 1.0f));
-        const float n = automatic ? narrowed[r] : 1.0f;
-        const Vec3 mid = (left[r] + right[r]) * 0.5f, l = mid + (left[r] - mid) * n, rr = mid + (right[r] - mid) * n;
         positions.insert(positions.end(), {l - h, l + h, rr + h, rr - h});
       }
     }
@@ -669,8 +672,8 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // Every control quad of a connector refines into 4^levels quads (OpenSubdiv numbers
   // a face's children consecutively), each split in 2 triangles.
   bool clear = false;
-  if (automatic) {
-    const int64_t faces_per_rung = int64_t(width) * 2 << (2 * options.levels);
+  if (clearing) {
+    const int64_t faces_per_rung = int64_t(ribbon ? 1 : width) * 2 << (2 * options.levels);
     auto step = [&](size_t rung, int delta) {
       const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
                             cycle.cycle_start.begin() - 1);
@@ -700,7 +703,7 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
       for (size_t r = 0; r < thinned.size(); ++r) {
         if (!thin[r] || thinned[r] < 0.1f) continue;
         any = true;
-        if (thinned[r] < 1) narrowed[r] *= 0.7f;
+        if (thinned[r] < 1 || ribbon) narrowed[r] *= 0.7f;
         thinned[r] *= 0.5f;
         for (int d = -2; d <= 2; ++d) {
           const auto first = changed.begin() + int64_t(step(r, d)) * faces_per_rung;

@@ -205,6 +205,23 @@ TEST(CliWireOutput, PngOfTheResult) {
   EXPECT_FALSE(std::filesystem::exists(dir / "none.stl"));
 }
 
+// A ribbon is searched too, and narrowed about its middle where it crosses itself, a few
+// rounds: on the connecting rod's CAD slivers the ribbon at level 0 had 9 crossing faces
+// before (its surface crosses itself elsewhere, which the ribbon at s = 0.6 keeps clear
+// of), and is clear after, CGAL agreeing.
+TEST(CliWireOutput, RibbonsAreNarrowedWhereTheyCross) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  const CommandResult r = run_cli({"wire", (shared_meshes() / "conrod.stl").string(), "-o", (dir / "ribbon.ply").string(),
+                                   "--method", "variable", "--shape", "ribbon", "--levels", "0", "--report",
+                                   (dir / "r.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(nlohmann::json::parse(read_file(dir / "r.json"))["self_intersecting"].get<bool>());
+  const CgalVerdict cgal = cgal_judge(read_mesh(dir / "ribbon.ply"));
+  ASSERT_TRUE(cgal.loaded);
+  EXPECT_FALSE(cgal.self_intersecting);
+}
+
 // --min-thickness judges the wire's minimum thickness in the report and the summary; the
 // wire is written either way, and the command succeeds: the report is the verdict.
 TEST(CliWireOutput, MinimumThicknessIsJudged) {

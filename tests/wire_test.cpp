@@ -160,7 +160,7 @@ TEST(Wire, VariableWireOnAScanIsClearOnceItsCapsAreFlipped) {
 }
 
 // `clear` is the search's verdict on the very mesh returned, and a report that takes it
-// says what its own search says; only a wire of automatic thickness is searched.
+// says what its own search says; a wire of a given thickness is not searched.
 TEST(Wire, ClearIsTheVerdictOfASearchOfTheResult) {
   const CurveResult curve = curve_of(sphere(300));
   const VariableWire automatic_wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
@@ -170,7 +170,7 @@ TEST(Wire, ClearIsTheVerdictOfASearchOfTheResult) {
   EXPECT_EQ(printability_json(check_printability(automatic_wire.mesh, {.known_clear = true, .thickness = false})),
             printability_json(searched));
   EXPECT_FALSE(variable_wire(curve.quads, curve.cycle, {.thickness = 0.01, .levels = 1}).clear);
-  EXPECT_FALSE(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).clear);
+  EXPECT_TRUE(variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).clear);
 }
 
 // On a Moebius band the dual-of-Simplest cycle is the outline of a spanning tree's

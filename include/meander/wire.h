@@ -95,8 +95,8 @@ struct VariableWireOptions {
 struct VariableWire {
   PolygonMesh mesh;
   // The mesh was searched for self-intersections after its last change and none was
-  // found (a wire of automatic thickness; see variable_wire): a report can take this
-  // instead of searching again (PrintabilityOptions::known_clear).
+  // found (a ribbon, or a wire of automatic thickness; see variable_wire): a report can
+  // take this instead of searching again (PrintabilityOptions::known_clear).
   bool clear = false;
 };
 
@@ -107,7 +107,9 @@ struct VariableWire {
 // triangle of the cycle 2 quads (ribbon) or 8 quads (wire); each level multiplies the
 // quads by 4. A wire of automatic thickness is then searched for self-intersections
 // (printability.h), and where it has some its slabs are thinned (then also narrowed)
-// around them and smoothed again, a few rounds while that helps. Throws UsageError for
+// around them and smoothed again, a few rounds while that helps; a ribbon likewise, but
+// narrowed from the first round (it has no thickness), unless s or t is 1: then its
+// trapezoids meet along the triangles' sides by design. Throws UsageError for
 // s or t outside [0, 1], thickness < 0 or levels < 0.
 VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
 
