@@ -667,10 +667,12 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // around each crossing the slabs are halved (and from the second time on, narrowed
   // about their middle: where the strip bends across a sharp crease its sides fold
   // however thin it is), the wire smoothed again and searched again where it changed,
-  // for a few rounds. What does not clear is reported as it is: mostly a surface that
-  // crosses itself, or slivers so flat that their slab folds in its own plane.
-  // Every control quad of a connector refines into 4^levels quads (OpenSubdiv numbers
-  // a face's children consecutively), each split in 2 triangles.
+  // for a few rounds. A ribbon, which has no thickness, is narrowed from the first
+  // round: smoothing pulls the strips of neighbouring passes into each other at creases.
+  // What does not clear is reported as it is: mostly a surface that crosses itself, or
+  // slivers so flat that their slab folds in its own plane. Every control quad of a
+  // connector (a wire's ring has 4, a ribbon's 1) refines into 4^levels quads
+  // (OpenSubdiv numbers a face's children consecutively), each split in 2 triangles.
   bool clear = false;
   if (clearing) {
     const int64_t faces_per_rung = int64_t(ribbon ? 1 : width) * 2 << (2 * options.levels);
