@@ -59,16 +59,16 @@ void run_duotone(const DuotoneArgs& a) {
   const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
+  const auto quads_at = [&](int levels) { return double(duotone.quads.num_quads()) * std::pow(4.0, levels); };
   require_memory(
-      a.input, double(duotone.quads.num_quads()) * std::pow(4.0, a.subdivide), kBytesPerQuad,
+      a.input, quads_at(a.subdivide), kBytesPerQuad,
       [&] {
         return "the duotone surface at --subdivide " + std::to_string(a.subdivide) + " would have " +
-               std::to_string(int64_t(double(duotone.quads.num_quads()) * std::pow(4.0, a.subdivide))) + " quads";
+               std::to_string(int64_t(quads_at(a.subdivide))) + " quads";
       },
       [&](double memory) -> std::string {
         for (int levels = a.subdivide - 1; levels >= 0; --levels)
-          if (double(duotone.quads.num_quads()) * std::pow(4.0, levels) * kBytesPerQuad <= memory)
-            return "use --subdivide " + std::to_string(levels) + " or a coarser mesh";
+          if (quads_at(levels) * kBytesPerQuad <= memory) return "use --subdivide " + std::to_string(levels) + " or a coarser mesh";
         return "use a coarser mesh";
       });
   TexturedMesh surface = duotone_surface(duotone, tiles);

@@ -48,13 +48,13 @@ constexpr double kBytesPerTriangle = 240;
 
 // Refuses a wire that would not fit in memory, naming the largest --levels that fits or
 // the options to lower.
-void require_memory_for(const WireArgs& a, int64_t triangles, int64_t cycle_triangles) {
+void require_memory_for(const WireArgs& a, const VariableWireOptions& variable, int64_t triangles, int64_t cycle_triangles) {
   const auto what = [&] { return "the " + a.method + " " + a.shape + " would have " + std::to_string(triangles) + " triangles"; };
   const auto advice = [&](double memory) -> std::string {
     if (a.method != "variable")
       return "lower --samples (" + std::to_string(a.curve.samples) + ")" +
              (a.shape == "wire" ? " or --sides (" + std::to_string(a.sides) + ")" : std::string()) + ", or use a coarser mesh";
-    VariableWireOptions lower{.shape = parse_wire_shape(a.shape), .levels = a.levels};
+    VariableWireOptions lower = variable;
     while (--lower.levels >= 0)
       if (double(variable_wire_triangles(cycle_triangles, lower)) * kBytesPerTriangle <= memory)
         return "use --levels " + std::to_string(lower.levels) + " or a coarser mesh";
@@ -106,7 +106,7 @@ void run_wire(const WireArgs& a) {
                  said.c_str());
   }
 
-  require_memory_for(a, constant ? constant_wire_triangles(curve.cycle.num_triangles(), constant_options)
+  require_memory_for(a, variable, constant ? constant_wire_triangles(curve.cycle.num_triangles(), constant_options)
                                   : variable_wire_triangles(curve.cycle.num_triangles(), variable),
                      curve.cycle.num_triangles());
 
