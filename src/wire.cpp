@@ -463,6 +463,22 @@ int64_t variable_wire_triangles(int64_t cycle_triangles, const VariableWireOptio
 
 namespace {
 
+// How far a slab's normal may lean from its triangle's. Across a sharp crease the vertex
+// normals average the faces on either side, and a triangle on a steep side can have a
+// rung lying along them: the slab's section, that rung swept along the normal, then has
+// no width and its walls cross (the cut of a scan's neck, which every seed crossed). At
+// 45 degrees the section keeps at least sin 45 of its area; 60 left crossings there.
+constexpr double max_slab_tilt = std::numbers::pi / 4;
+
+// `v` (unit) turned towards the unit `axis` until it is within `angle` of it.
+Vec3 within_cone(Vec3 v, Vec3 axis, double angle) {
+  const double cosine = dot(v, axis);
+  const Vec3 aside = v - axis * float(cosine);
+  if (cosine >= std::cos(angle)) return v;
+  if (norm(aside) == 0) return axis;
+  return normalized(axis * float(std::cos(angle)) + normalized(aside) * float(std::sin(angle)));
+}
+
 // Refuses a result a mesh cannot index, before any of it is made.
 void require_indexable(int64_t triangles, const std::string& what) {
   if (triangles > 2147483647)
@@ -556,8 +572,9 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
       // thin triangle turns the curve round (an apex angle near 180 degrees) the slab is
       // a plate as thin as the triangle, and any difference between the normals of its
       // corners tilts its walls into each other. Smooth (vertex) normals on a coherent
-      // cycle; otherwise the ladder's up side.
-      const Vec3 normal = ladder.coherent[size_t(c)] ? control_normal(quads, cycle, ladder, c, i) : ladder.up[i];
+      // cycle, within max_slab_tilt of the triangle's own; otherwise the ladder's up side.
+      const Vec3 normal = ladder.coherent[size_t(c)] ? within_cone(control_normal(quads, cycle, ladder, c, i), ladder.up[i], max_slab_tilt)
+                                                     : ladder.up[i];
       const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
       for (size_t r = 0; r < 2; ++r) {
         const size_t side = r == 0 ? !entry_p : entry_p, rung = 2 * i + r;

@@ -1,5 +1,6 @@
 #include "test_support.h"
 
+#include <algorithm>
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
@@ -89,6 +90,27 @@ double surface_area(const PolygonMesh& m) {
       a += 0.5 * norm(cross(m.positions[size_t(v[k])] - m.positions[size_t(v[0])], m.positions[size_t(v[k + 1])] - m.positions[size_t(v[0])]));
   }
   return a;
+}
+
+PolygonMesh crop(const PolygonMesh& mesh, Vec3 centre, double radius) {
+  PolygonMesh piece;
+  std::vector<int32_t> index(mesh.positions.size(), -1);
+  std::vector<int32_t> face;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto corners = mesh.face(f);
+    if (!std::all_of(corners.begin(), corners.end(), [&](int32_t v) { return norm(mesh.positions[size_t(v)] - centre) < radius; }))
+      continue;
+    face.clear();
+    for (const int32_t v : corners) {
+      if (index[size_t(v)] < 0) {
+        index[size_t(v)] = piece.num_vertices();
+        piece.positions.push_back(mesh.positions[size_t(v)]);
+      }
+      face.push_back(index[size_t(v)]);
+    }
+    piece.add_face(face);
+  }
+  return piece;
 }
 
 } // namespace meander::test

@@ -19,6 +19,10 @@ std::filesystem::path shared_meshes();
 // The area of a polygon mesh, each face fanned from its first vertex.
 double surface_area(const PolygonMesh& mesh);
 
+// The faces of `mesh` whose corners all lie within `radius` of `centre`, with the
+// vertices they use: a small piece of a large mesh, where something happens, for a test.
+PolygonMesh crop(const PolygonMesh& mesh, Vec3 centre, double radius);
+
 #define MEANDER_REQUIRE_SHARED_MESHES()                                                                 \
   do {                                                                                                  \
     if (!std::filesystem::is_directory(::meander::test::shared_meshes()))                              \

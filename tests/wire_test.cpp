@@ -1,5 +1,6 @@
 // Wires and ribbons (paper Section 4): the invariants a printer and a viewer rely on,
 // on generated shapes and the real meshes, through the library and the CLI.
+#include "cgal_judge.h"
 #include "test_support.h"
 
 #include "meander/check.h"
@@ -157,6 +158,37 @@ TEST(Wire, VariableWireOnAScanIsClearOnceItsCapsAreFlipped) {
       make_curve(std::move(bunny), {.slab_mesh = SlabMeshOptions{}, .cycle = {.tree = TreeStrategy::shaped}, .sample = false});
   EXPECT_GT(curve.cap_flips, 100);
   EXPECT_TRUE(variable_wire(curve.quads, curve.cycle, {.levels = 0}).clear);
+}
+
+// The cut of the camel's neck (camelhead.off): a wall of long thin triangles meets the
+// neck at a sharp crease, where the vertex normals lean far off the wall. With the slabs
+// standing along them, a rung of the wall could lie along its slab's normal; the slab's
+// section then had no width and the wire crossed itself at every seed (8 faces at level
+// 0, 40 at level 1). Each slab's normal is kept within 45 degrees of its triangle's.
+TEST(Wire, SlabsLeanNoMoreThanFortyFiveDegreesFromTheirTriangles) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const PolygonMesh neck = test::crop(read_mesh(test::shared_meshes() / "camelhead.off"), {0.1547f, 0.0597f, -0.4352f}, 0.05);
+  ASSERT_EQ(neck.num_faces(), 172);
+  for (const uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const CurveResult curve =
+        make_curve(repair(neck, "neck").mesh, {.slab_mesh = SlabMeshOptions{}, .cycle = {.tree = TreeStrategy::shaped, .seed = seed}, .sample = false});
+    const PolygonMesh slabs = variable_wire(curve.quads, curve.cycle, {.levels = 0}).mesh;
+    ASSERT_EQ(slabs.positions.size(), 8 * curve.cycle.order.size());
+    for (size_t rung = 0; rung < 2 * curve.cycle.order.size(); ++rung) {
+      const auto [p, apex, n] = cycle_triangle(curve.quads, curve.cycle.order[rung / 2]);
+      const Vec3 a = curve.quads.positions[size_t(p)], b = curve.quads.positions[size_t(apex)], c = curve.quads.positions[size_t(n)];
+      const Vec3 face = cross(b - a, c - a), up = slabs.positions[4 * rung + 1] - slabs.positions[4 * rung]; // left above - below
+      if (norm(face) > 0 && norm(up) > 0) {
+        EXPECT_GE(std::abs(dot(face, up)) / (norm(face) * norm(up)), std::cos(std::numbers::pi / 4) - 1e-4) << "rung " << rung;
+      }
+    }
+    const VariableWire wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
+    EXPECT_TRUE(wire.clear);
+    const test::CgalVerdict cgal = test::cgal_judge(wire.mesh);
+    ASSERT_TRUE(cgal.loaded);
+    EXPECT_FALSE(cgal.self_intersecting);
+  }
 }
 
 // `clear` is the search's verdict on the very mesh returned, and a report that takes it
