@@ -124,6 +124,9 @@ std::string curve_target(std::span<const uint8_t> input) {
   job.cycle.seed = bytes.byte();
   job.curve.smoothing = Smoothing(bytes.byte() % 3);
   job.curve.samples = 1 + bytes.byte() % 4;
+  // As `meander wire --method variable` makes it: polygons split, caps flipped, needles
+  // and folds collapsed.
+  if (bytes.byte() % 2) job.slab_mesh = SlabMeshOptions{};
   PolygonMesh mesh;
   // Points of a 4x4x4 grid: finite, often coplanar or collinear, sometimes coincident.
   mesh.positions.resize(4 + bytes.byte() % 24);

@@ -55,8 +55,13 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
       result.cap_flips = flipped.flips;
       result.cap_cuts = flipped.cuts;
     }
+    if (job.slab_mesh->needles) {
+      NeedleCollapses collapsed = collapse_needles(std::move(mesh), *job.slab_mesh->needles);
+      mesh = std::move(collapsed.mesh);
+      result.needle_collapses = collapsed.collapses;
+    }
     // Flips keep the sizes, which the check below would not catch.
-    if (result.stars + result.cap_flips + result.cap_cuts > 0) connectivity = Connectivity();
+    if (result.stars + result.cap_flips + result.cap_cuts + result.needle_collapses > 0) connectivity = Connectivity();
     watch.lap("slab mesh");
   }
   if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {

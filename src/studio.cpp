@@ -411,6 +411,7 @@ std::string studio_stats_json(const StudioResult& result) {
     stats["stars"] = result.curve.stars;
     stats["cap_flips"] = result.curve.cap_flips;
     stats["cap_cuts"] = result.curve.cap_cuts;
+    stats["needle_collapses"] = result.curve.needle_collapses;
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;
   }

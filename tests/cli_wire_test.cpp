@@ -5,6 +5,7 @@
 
 #include "meander/check.h"
 #include "meander/io.h"
+#include "meander/shapes.h"
 
 #include <nlohmann/json.hpp>
 
@@ -165,6 +166,30 @@ TEST(CliWireOutput, VariableMethodFlipsCapsUnlessTold) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--cap-angle"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.ply"));
+}
+
+// `--method variable` also collapses the short edges of needles, and says so;
+// --keep-faces keeps them.
+TEST(CliWireOutput, VariableMethodCollapsesNeedlesUnlessTold) {
+  const auto dir = output_dir();
+  PolygonMesh mesh = grid(18); // 3 x 3 squares; vertex 5 is (1, 1) in cells, 6 is (2, 1)
+  mesh.positions[5] = mesh.positions[6] * 0.99f + mesh.positions[5] * 0.01f;
+  write_mesh(mesh, dir / "needles.obj");
+  auto wire = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"wire", (dir / "needles.obj").string(), "-o", (dir / out).string(), "--method", "variable", "--levels", "0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+  };
+  const CommandResult collapsed = wire("collapsed.ply", {});
+  ASSERT_EQ(collapsed.exit_code, 0) << collapsed.err;
+  // (The vertex moved also makes two caps, which are flipped first.)
+  EXPECT_NE(collapsed.err.find("needles.obj: note: flipped 2 edges facing an angle over 120 degrees and collapsed 1 edge facing an "
+                               "angle under 5 degrees, where the slabs would fold"),
+            std::string::npos)
+      << collapsed.err;
+  const CommandResult kept = wire("kept.ply", {"--keep-faces"});
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_EQ(kept.err.find("collapsed"), std::string::npos) << kept.err;
 }
 
 // Section 4.1: with s and t near 1 the variable ribbons cover the surface densely

@@ -144,15 +144,27 @@ TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(clear))["surface_crossings"], 0);
 }
 
-// The variable modes split large polygons and flip caps first, as `meander wire --method
-// variable` does, and say how many; the other modes use the mesh as it is.
-TEST(Studio, VariableModesFlipCaps) {
+// The variable modes split large polygons, flip caps and collapse needles first, as
+// `meander wire --method variable` does, and say how many; the other modes use the mesh
+// as it is.
+TEST(Studio, VariableModesFlipCapsAndCollapseNeedles) {
   const StudioSurface cap = load_studio_surface("cap.obj", "v 0 0 0\nv 2 0 0\nv 1 0.05 0\nv 1 -1 0\nf 1 2 3\nf 2 1 4\n");
   for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::constant_ribbon}) {
     const StudioResult r = make_studio_result(cap, {.mode = mode, .levels = 0, .preview = true});
     const bool variable = mode != StudioMode::constant_ribbon;
     EXPECT_EQ(r.curve.cap_flips, variable ? 1 : 0);
     EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["cap_flips"], r.curve.cap_flips);
+  }
+  // And collapse needles: two, on one short edge of a grid.
+  PolygonMesh grid_mesh = grid(18);
+  grid_mesh.positions[5] = grid_mesh.positions[6] * 0.99f + grid_mesh.positions[5] * 0.01f;
+  const auto needles_path = test::output_dir() / "needles.obj";
+  write_mesh(grid_mesh, needles_path);
+  const StudioSurface needles = load_studio_surface("needles.obj", test::read_file(needles_path));
+  for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::constant_wire}) {
+    const StudioResult r = make_studio_result(needles, {.mode = mode, .levels = 0, .preview = true});
+    EXPECT_EQ(r.curve.needle_collapses, mode == StudioMode::variable_wire ? 1 : 0);
+    EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["needle_collapses"], r.curve.needle_collapses);
   }
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto path = test::shared_meshes() / "genus3hexa1.obj";

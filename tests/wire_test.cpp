@@ -191,6 +191,34 @@ TEST(Wire, SlabsLeanNoMoreThanFortyFiveDegreesFromTheirTriangles) {
   }
 }
 
+// Two places of camelhead.off: a strip of needles (angles of 0.6 to 0.9 degrees, 0.014
+// long) under the jaw, and a cap of 174 degrees turned over its neighbours. Every
+// dual-of-Simplest triangle around them lays a rung along the travel or folds back, and
+// at level 1 the wire crossed itself at most seeds until their edges were collapsed.
+TEST(Wire, VariableWireOnAScanIsClearOnceItsNeedlesAndFoldsAreCollapsed) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const PolygonMesh camel = read_mesh(test::shared_meshes() / "camelhead.off");
+  for (const auto& [centre, radius] : {std::pair{Vec3{0, -0.109f, 0.257f}, 0.04}, {Vec3{0.0645f, 0.0995f, 0.0702f}, 0.02}}) {
+    const PolygonMesh piece = test::crop(camel, centre, radius);
+    int crossed_before = 0;
+    for (const uint64_t seed : {1, 2, 3, 4, 5, 6}) {
+      SCOPED_TRACE("seed " + std::to_string(seed) + " at " + std::to_string(centre.y));
+      CurveJob job{.slab_mesh = SlabMeshOptions{}, .cycle = {.tree = TreeStrategy::shaped, .seed = seed}, .sample = false};
+      const CurveResult curve = make_curve(repair(piece, "piece").mesh, job);
+      EXPECT_GT(curve.needle_collapses, 0);
+      const VariableWire wire = variable_wire(curve.quads, curve.cycle, {.levels = 1});
+      EXPECT_TRUE(wire.clear);
+      const test::CgalVerdict cgal = test::cgal_judge(wire.mesh);
+      ASSERT_TRUE(cgal.loaded);
+      EXPECT_FALSE(cgal.self_intersecting);
+      job.slab_mesh->needles.reset();
+      const CurveResult kept = make_curve(repair(piece, "piece").mesh, job);
+      crossed_before += !variable_wire(kept.quads, kept.cycle, {.levels = 1}).clear;
+    }
+    EXPECT_GE(crossed_before, 3) << "the pieces show what the collapses mend";
+  }
+}
+
 // `clear` is the search's verdict on the very mesh returned, and a report that takes it
 // says what its own search says; a wire of a given thickness is not searched.
 TEST(Wire, ClearIsTheVerdictOfASearchOfTheResult) {

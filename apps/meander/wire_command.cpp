@@ -89,7 +89,7 @@ void run_wire(const WireArgs& a) {
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
-  if (curve.stars + curve.cap_flips + curve.cap_cuts > 0) {
+  if (curve.stars + curve.cap_flips + curve.cap_cuts + curve.needle_collapses > 0) {
     const auto count = [](int64_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
     std::vector<std::string> done;
     if (curve.stars > 0)
@@ -100,6 +100,10 @@ void run_wire(const WireArgs& a) {
     if (curve.cap_flips > 0) done.push_back("flipped " + count(curve.cap_flips, "edge", "edges") + " facing an angle over " + angle + " degrees");
     if (curve.cap_cuts > 0)
       done.push_back("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " with an angle over " + angle + " degrees on the boundary");
+    if (curve.needle_collapses > 0) {
+      std::snprintf(angle, sizeof angle, "%g", job.slab_mesh->needles->needle_angle_degrees);
+      done.push_back("collapsed " + count(curve.needle_collapses, "edge", "edges") + " facing an angle under " + angle + " degrees");
+    }
     std::string said = done[0];
     for (size_t k = 1; k < done.size(); ++k) said += (k + 1 == done.size() ? " and " : ", ") + done[k];
     std::fprintf(stderr, "%s: note: %s, where the slabs would fold (--keep-faces keeps the mesh as it is)\n", a.input.c_str(),
@@ -185,7 +189,8 @@ Command add_wire_command(CLI::App& parent) {
                                                   "angle exceeds this many degrees (180: flip none)")
       ->check(CLI::Range(90.0, 180.0))->capture_default_str();
   app->add_flag("--keep-faces", args->keep_faces, "variable: build on the mesh's faces as they are, without splitting "
-                                                  "polygons of 5 or more sides into triangles or flipping flat triangles");
+                                                  "polygons of 5 or more sides into triangles, flipping flat triangles or "
+                                                  "collapsing the short edges of needles and of triangles folded over");
   app->add_option("--levels", args->levels, "variable: Catmull-Clark subdivision levels")->check(CLI::Range(0, 6))->capture_default_str();
   app->add_option("--min-thickness", args->min_thickness, "wire: the thinnest wall the printer makes, in mesh units "
                                                           "(about twice the nozzle width); thinner is reported as not printable")

@@ -3,6 +3,7 @@
 // smooth curves out, with the time each stage took.
 #pragma once
 
+#include "meander/collapse_needles.h"
 #include "meander/curve.h"
 #include "meander/flip_caps.h"
 #include "meander/hamiltonian.h"
@@ -20,10 +21,12 @@ namespace meander {
 enum class Quadrangulation { dual_simplest, catmull_clark, none };
 
 // Polygons of star_sides or more vertices split into stars of triangles
-// (star_polygons.h; 0: none), then the caps flipped as `caps` says (flip_caps.h).
+// (star_polygons.h; 0: none), then the caps flipped as `caps` says (flip_caps.h), then
+// the needles collapsed as `needles` says (collapse_needles.h).
 struct SlabMeshOptions {
   int star_sides = 5;
   std::optional<CapFlipOptions> caps = CapFlipOptions{};
+  std::optional<NeedleCollapseOptions> needles = NeedleCollapseOptions{};
 };
 
 // Parses "dual-simplest" | "catmull-clark" | "none"; throws UsageError otherwise.
@@ -52,8 +55,9 @@ struct CurveResult {
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
   int64_t points_written = 0; // to CurveJob::output
-  // By CurveJob::slab_mesh: polygons split, edges flipped, caps cut off the boundary.
-  int64_t stars = 0, cap_flips = 0, cap_cuts = 0;
+  // By CurveJob::slab_mesh: polygons split, edges flipped, caps cut off the boundary,
+  // needles' edges collapsed.
+  int64_t stars = 0, cap_flips = 0, cap_cuts = 0, needle_collapses = 0;
 };
 
 // Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh

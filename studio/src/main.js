@@ -344,6 +344,7 @@ function showStats(stats) {
     if (stats.stars > 0) rows.push(['polygons split', `${stats.stars.toLocaleString()} of 5 or more sides, into triangles`]);
     if (stats.cap_flips > 0) rows.push(['caps flipped', `${stats.cap_flips.toLocaleString()} edges (flat triangles fold the slabs)`]);
     if (stats.cap_cuts > 0) rows.push(['caps cut off', `${stats.cap_cuts.toLocaleString()} triangles on the boundary`]);
+    if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${stats.needle_collapses.toLocaleString()} short edges (needles and folded triangles fold the slabs)`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
