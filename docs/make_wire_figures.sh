@@ -27,3 +27,7 @@ done
 # Warped hexagons of a genus-3 mesh, split into stars of triangles before the slabs.
 "$MEANDER" wire "$MESHES/genus3hexa1.obj" -o "$OUT/genus3.stl" --method variable \
   --png images/wire_genus3hexa1_variable.png --size 400x320 --view 20,30
+# A scan with strips of needles, a folded sliver and sharp creases (docs/wires.md, items
+# 1 and 6), at level 1 for the picture's sake (seed 2: clear there; docs/wires.md).
+"$MEANDER" wire "$MESHES/camelhead.off" -o "$OUT/camel.stl" --method variable --levels 1 --seed 2 \
+  --png images/wire_camelhead_variable.png --size 720x440 --view 270,15 --fit
