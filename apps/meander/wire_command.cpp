@@ -102,7 +102,8 @@ void run_wire(const WireArgs& a) {
       done.push_back("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " with an angle over " + angle + " degrees on the boundary");
     if (curve.needle_collapses > 0) {
       std::snprintf(angle, sizeof angle, "%g", job.slab_mesh->needles->needle_angle_degrees);
-      done.push_back("collapsed " + count(curve.needle_collapses, "edge", "edges") + " facing an angle under " + angle + " degrees");
+      done.push_back("collapsed " + count(curve.needle_collapses, "short edge", "short edges") + " of needles (an angle under " + angle +
+                     " degrees) or of triangles folded over their neighbours");
     }
     std::string said = done[0];
     for (size_t k = 1; k < done.size(); ++k) said += (k + 1 == done.size() ? " and " : ", ") + done[k];
