@@ -724,15 +724,7 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
     if (options.strict)
       refuse(unused == 1 ? "vertex " + std::to_string(first) + " is not used by any face"
                          : std::to_string(unused) + " vertices are not used by any face (first: " + std::to_string(first) + ")");
-    std::vector<int32_t> index(used.size(), -1);
-    int32_t kept = 0;
-    for (size_t v = 0; v < used.size(); ++v)
-      if (used[v]) {
-        m.positions[size_t(kept)] = m.positions[v];
-        index[v] = kept++;
-      }
-    m.positions.resize(size_t(kept));
-    for (int32_t& v : m.face_vertices) v = index[size_t(v)];
+    const std::vector<int32_t> index = keep_vertices(m, used);
     // The renumbering keeps the vertex order, so edges keep their (lo, hi) order too.
     for (auto& ends : c.edge_vertices) ends = {index[size_t(ends[0])], index[size_t(ends[1])]};
     repairs.push_back("dropped " + plural(unused, "unreferenced vertex", "unreferenced vertices") + " (first: vertex " +

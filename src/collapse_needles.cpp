@@ -57,7 +57,7 @@ public:
       const bool needle = shortest <= options_.max_move * longest && dot(ou, ov) > needle_cosine_ * norm(ou) * norm(ov);
       if ((needle || folded(f)) && collapse(u, v, removed)) ++collapses;
     }
-    if (collapses > 0) remove_faces(removed);
+    if (collapses > 0) remove_faces(mesh_, removed);
     return collapses;
   }
 
@@ -169,19 +169,6 @@ private:
     return true;
   }
 
-  void remove_faces(const std::vector<uint8_t>& removed) {
-    std::vector<int32_t> start{0}, vertices;
-    vertices.reserve(mesh_.face_vertices.size());
-    for (int32_t f = 0; f < mesh_.num_faces(); ++f) {
-      if (removed[size_t(f)]) continue;
-      const auto face = mesh_.face(f);
-      vertices.insert(vertices.end(), face.begin(), face.end());
-      start.push_back(int32_t(vertices.size()));
-    }
-    mesh_.face_start = std::move(start);
-    mesh_.face_vertices = std::move(vertices);
-  }
-
   PolygonMesh& mesh_;
   const NeedleCollapseOptions& options_;
   const double needle_cosine_;
@@ -195,20 +182,6 @@ private:
   std::vector<std::array<int32_t, 2>> pairs_;
 };
 
-// Drops the vertices no face uses, keeping the others' order.
-void drop_unused_vertices(PolygonMesh& mesh) {
-  std::vector<int32_t> index(mesh.positions.size(), -1);
-  for (const int32_t v : mesh.face_vertices) index[size_t(v)] = 0;
-  int32_t used = 0;
-  for (size_t v = 0; v < index.size(); ++v)
-    if (index[v] == 0) {
-      mesh.positions[size_t(used)] = mesh.positions[v];
-      index[v] = used++;
-    }
-  mesh.positions.resize(size_t(used));
-  for (int32_t& v : mesh.face_vertices) v = index[size_t(v)];
-}
-
 } // namespace
 
 NeedleCollapses collapse_needles(PolygonMesh mesh, const NeedleCollapseOptions& options) {
@@ -218,7 +191,11 @@ NeedleCollapses collapse_needles(PolygonMesh mesh, const NeedleCollapseOptions& 
     result.collapses += collapses;
     if (collapses == 0) break;
   }
-  if (result.collapses > 0) drop_unused_vertices(mesh);
+  if (result.collapses > 0) { // the merged edges' second ends are left unused
+    std::vector<uint8_t> used(mesh.positions.size(), 0);
+    for (const int32_t v : mesh.face_vertices) used[size_t(v)] = 1;
+    keep_vertices(mesh, used);
+  }
   result.mesh = std::move(mesh);
   return result;
 }

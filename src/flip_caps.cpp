@@ -111,16 +111,9 @@ private:
   }
 
   void remove_cut_faces() {
-    std::vector<int32_t> start{0}, vertices;
-    vertices.reserve(mesh_.face_vertices.size());
-    for (int32_t f = 0; f < mesh_.num_faces(); ++f) {
-      if (touched_[size_t(f)] == 2) continue;
-      const auto face = mesh_.face(f);
-      vertices.insert(vertices.end(), face.begin(), face.end());
-      start.push_back(int32_t(vertices.size()));
-    }
-    mesh_.face_start = std::move(start);
-    mesh_.face_vertices = std::move(vertices);
+    std::vector<uint8_t> cut(touched_.size());
+    for (size_t f = 0; f < cut.size(); ++f) cut[f] = touched_[f] == 2;
+    remove_faces(mesh_, cut);
   }
 
   PolygonMesh& mesh_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 namespace meander {
 
@@ -26,6 +27,32 @@ Vec3 centroid(std::span<const Vec3> positions, std::span<const int32_t> face) {
   }
   const double n = double(face.size());
   return {float(x / n), float(y / n), float(z / n)};
+}
+
+void remove_faces(PolygonMesh& mesh, std::span<const uint8_t> remove) {
+  std::vector<int32_t> start{0}, vertices;
+  vertices.reserve(mesh.face_vertices.size());
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    if (remove[size_t(f)]) continue;
+    const auto face = mesh.face(f);
+    vertices.insert(vertices.end(), face.begin(), face.end());
+    start.push_back(int32_t(vertices.size()));
+  }
+  mesh.face_start = std::move(start);
+  mesh.face_vertices = std::move(vertices);
+}
+
+std::vector<int32_t> keep_vertices(PolygonMesh& mesh, std::span<const uint8_t> keep) {
+  std::vector<int32_t> index(mesh.positions.size(), -1);
+  int32_t kept = 0;
+  for (size_t v = 0; v < index.size(); ++v)
+    if (keep[v]) {
+      mesh.positions[size_t(kept)] = mesh.positions[v];
+      index[v] = kept++;
+    }
+  mesh.positions.resize(size_t(kept));
+  for (int32_t& v : mesh.face_vertices) v = index[size_t(v)];
+  return index;
 }
 
 std::vector<Vec3> vertex_normals(const PolygonMesh& mesh) {

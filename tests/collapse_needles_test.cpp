@@ -14,20 +14,12 @@
 namespace meander::test {
 namespace {
 
-double smallest_angle_degrees(const PolygonMesh& mesh, int32_t f) {
-  const auto v = mesh.face(f);
-  double smallest = 180;
-  for (size_t k = 0; k < 3; ++k) {
-    const Vec3 o = mesh.positions[size_t(v[k])], p = mesh.positions[size_t(v[(k + 1) % 3])],
-               q = mesh.positions[size_t(v[(k + 2) % 3])];
-    smallest = std::min(smallest, std::acos(std::clamp(dot(p - o, q - o) / (norm(p - o) * norm(q - o)), -1.0, 1.0)) * 180 / std::numbers::pi);
-  }
-  return smallest;
-}
-
 int needles(const PolygonMesh& mesh, double degrees) {
   int count = 0;
-  for (int32_t f = 0; f < mesh.num_faces(); ++f) count += smallest_angle_degrees(mesh, f) < degrees;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto angles = triangle_angles_degrees(mesh, f);
+    count += *std::min_element(angles.begin(), angles.end()) < degrees;
+  }
   return count;
 }
 
@@ -52,8 +44,11 @@ TEST(CollapseNeedles, MergesTheEndsOfANeedlesShortEdge) {
   // The merged vertex is the edge's midpoint; the others keep their place and order.
   const Vec3 midpoint = (mesh.positions[size_t(v)] + mesh.positions[size_t(w)]) * 0.5f;
   EXPECT_LT(norm(collapsed.mesh.positions[size_t(v)] - midpoint), 1e-6);
-  for (int32_t i = 0; i < collapsed.mesh.num_vertices(); ++i)
-    if (i != v) EXPECT_EQ(collapsed.mesh.positions[size_t(i)], mesh.positions[size_t(i < w ? i : i + 1)]) << i;
+  for (int32_t i = 0; i < collapsed.mesh.num_vertices(); ++i) {
+    if (i != v) {
+      EXPECT_EQ(collapsed.mesh.positions[size_t(i)], mesh.positions[size_t(i < w ? i : i + 1)]) << i;
+    }
+  }
   const MeshReport report = inspect(collapsed.mesh);
   EXPECT_EQ(report.boundary_loops, 1);
   EXPECT_EQ(report.non_manifold_edges, 0);

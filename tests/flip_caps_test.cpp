@@ -16,14 +16,8 @@ namespace meander::test {
 namespace {
 
 double largest_angle_degrees(const PolygonMesh& mesh, int32_t f) {
-  const auto v = mesh.face(f);
-  double largest = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    const Vec3 o = mesh.positions[size_t(v[k])], p = mesh.positions[size_t(v[(k + 1) % 3])],
-               q = mesh.positions[size_t(v[(k + 2) % 3])];
-    largest = std::max(largest, std::acos(std::clamp(dot(p - o, q - o) / (norm(p - o) * norm(q - o)), -1.0, 1.0)));
-  }
-  return largest * 180 / std::numbers::pi;
+  const auto angles = triangle_angles_degrees(mesh, f);
+  return *std::max_element(angles.begin(), angles.end());
 }
 
 int caps(const PolygonMesh& mesh, double degrees) {

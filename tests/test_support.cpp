@@ -1,6 +1,8 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
@@ -90,6 +92,16 @@ double surface_area(const PolygonMesh& m) {
       a += 0.5 * norm(cross(m.positions[size_t(v[k])] - m.positions[size_t(v[0])], m.positions[size_t(v[k + 1])] - m.positions[size_t(v[0])]));
   }
   return a;
+}
+
+std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f) {
+  const auto v = mesh.face(f);
+  std::array<double, 3> angles{};
+  for (size_t k = 0; k < 3; ++k) {
+    const Vec3 o = mesh.positions[size_t(v[k])], p = mesh.positions[size_t(v[(k + 1) % 3])], q = mesh.positions[size_t(v[(k + 2) % 3])];
+    angles[k] = std::acos(std::clamp(dot(p - o, q - o) / (norm(p - o) * norm(q - o)), -1.0, 1.0)) * 180 / std::numbers::pi;
+  }
+  return angles;
 }
 
 PolygonMesh crop(const PolygonMesh& mesh, Vec3 centre, double radius) {

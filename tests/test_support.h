@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -18,6 +19,9 @@ std::filesystem::path shared_meshes();
 
 // The area of a polygon mesh, each face fanned from its first vertex.
 double surface_area(const PolygonMesh& mesh);
+
+// The angles of triangle f at its three corners, in degrees.
+std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f);
 
 // The faces of `mesh` whose corners all lie within `radius` of `centre`, with the
 // vertices they use: a small piece of a large mesh, where something happens, for a test.

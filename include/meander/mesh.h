@@ -64,6 +64,14 @@ struct PolygonMesh {
 // The mean of a face's corners, `face` indexing `positions` (in double, rounded once).
 Vec3 centroid(std::span<const Vec3> positions, std::span<const int32_t> face);
 
+// Removes the faces f with remove[f] set, keeping the others' order. O(corners).
+void remove_faces(PolygonMesh& mesh, std::span<const uint8_t> remove);
+
+// Keeps the vertices v with keep[v] set, in their order, and renumbers the faces' corners
+// (every corner must be a kept vertex). Returns each old vertex's new index, -1 for
+// those dropped. O(vertices + corners).
+std::vector<int32_t> keep_vertices(PolygonMesh& mesh, std::span<const uint8_t> keep);
+
 // Area-weighted vertex normals of the polygons fanned from their first vertex, unit
 // length; a vertex without area around it gets +z (glTF requires unit normals). GLB
 // files and the studio's view shade with them.
