@@ -168,9 +168,11 @@ struct CycleCurveWriter::File {
   std::filesystem::path path;
   CurveOptions options;
   int k = 1;
-  // A PLY's layout, written by `thread`: the sampled cycle starts and where the points go.
+  int32_t points = 0;
+  // A PLY's layout, written by `thread` as if the points made one closed curve: where the
+  // points go, and the edges, of which only the last of each curve differs when there
+  // are several.
   std::optional<io::AtomicFile> ply;
-  std::vector<int32_t> start;
   uint64_t points_at = 0;
   std::exception_ptr failure;
   std::thread thread;
@@ -181,12 +183,12 @@ CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& op
   int64_t triangles = 0;
   for (int32_t q = 0; q < quads.num_quads(); ++q) triangles += quads.is_half(q) ? 1 : 2;
   file_->k = points_per_segment(triangles, options);
+  file_->points = int32_t(triangles * file_->k);
   if (io::lowercase_extension(path) != ".ply") return;
   file_->ply.emplace(path);
   file_->thread = std::thread([f = file_.get()] {
     try {
-      f->start = sampled_start(cycle_starts(f->quads), f->k);
-      f->points_at = io::write_ply_layout({.start = f->start}, *f->ply);
+      f->points_at = io::write_ply_layout({.start = {0, f->points}}, *f->ply);
     } catch (...) {
       f->failure = std::current_exception();
     }
@@ -226,22 +228,28 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
   if (f.thread.joinable()) f.thread.join();
   if (f.failure) std::rethrow_exception(std::exchange(f.failure, nullptr));
   const io::PolylineStream out = cycle_stream(f.quads, cycle, f.k, f.options.smoothing);
+  if (out.start.back() != f.points)
+    throw Error("internal error: the cycles of " + f.path.string() + " hold " + std::to_string(cycle.num_triangles()) +
+                " triangles, not the " + std::to_string(f.points / f.k) + " laid out");
   if (!f.ply) {
     io::write_polylines(out, f.path);
   } else {
-    if (out.start != f.start)
-      throw Error("internal error: the cycles of " + f.path.string() + " are not the ones laid out (" +
-                  std::to_string(cycle.num_cycles()) + " cycles of " + std::to_string(cycle.num_triangles()) +
-                  " triangles, laid out " + std::to_string(f.start.size() - 1) + " of " +
-                  std::to_string(f.start.back() / f.k) + ")");
     io::write_ply_points(out, *f.ply, f.points_at);
+    // The last edge of each curve goes back to its own first point (one per connected
+    // component, so these are few).
+    if (out.size() > 1)
+      for (int32_t c = 0; c < out.size(); ++c) {
+        const int32_t last = out.start[size_t(c) + 1] - 1;
+        f.ply->seek(f.points_at + 12 * uint64_t(f.points) + 8 * uint64_t(last));
+        f.ply->little_endian(last);
+        f.ply->little_endian(out.start[size_t(c)]);
+      }
     f.ply->commit();
   }
   return out.start.back();
 }
 
-// The cycles are known here: their sizes need no breadth-first pass, nor the file a
-// writer of its own.
+// The cycles are known here: the file needs no writer of its own.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
                            const std::filesystem::path& path) {
   const io::PolylineStream out =

@@ -168,37 +168,6 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
   return loops_of(m, std::move(diagonal));
 }
 
-std::vector<int32_t> cycle_starts(const QuadMesh& m) {
-  const int32_t nq = m.num_quads();
-  std::vector<int32_t> starts{0};
-  std::vector<bool> seen(size_t(nq), false);
-  // The front of a breadth-first walk; the part already walked is dropped once it is
-  // half the queue, so memory follows the front (a few thousand quads on a mesh of
-  // millions) rather than the component.
-  std::vector<int32_t> queue;
-  for (int32_t first = 0; first < nq; ++first) {
-    if (seen[size_t(first)]) continue;
-    int32_t triangles = 0;
-    seen[size_t(first)] = true;
-    queue.assign(1, first);
-    for (size_t head = 0; head < queue.size(); ++head) {
-      if (head > 4096 && 2 * head > queue.size()) {
-        queue.erase(queue.begin(), queue.begin() + std::ptrdiff_t(head));
-        head = 0;
-      }
-      const int32_t q = queue[head];
-      triangles += m.is_half(q) ? 1 : 2;
-      for (const int32_t n : m.neighbors[size_t(q)])
-        if (n >= 0 && !seen[size_t(n >> 2)]) {
-          seen[size_t(n >> 2)] = true;
-          queue.push_back(n >> 2);
-        }
-    }
-    starts.push_back(starts.back() + triangles);
-  }
-  return starts;
-}
-
 TriangleCycle triangle_loops(const QuadMesh& m, std::vector<uint8_t> diagonal) {
   require_cycle_size(m);
   if (int64_t(diagonal.size()) != m.num_quads())

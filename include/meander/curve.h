@@ -55,13 +55,14 @@ int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, co
                            const std::filesystem::path& path);
 
 // write_cycle_curves in two steps, so that the file is laid out while the cycles are
-// made: made from the quad mesh alone, the writer works out the cycles' sizes
-// (cycle_starts) and, for PLY, writes the header and the edges on a thread of its own
-// (a GB for a 10M-triangle mesh, beside the cycle's serial spanning tree); finish()
-// writes the points and commits. `quads` must stay alive and unchanged until then;
-// destroyed without finish(), the writer leaves no file. The constructor throws a bad
-// --samples and a file that cannot be made; finish() what the thread met, and what
-// write_cycle_curves throws.
+// made: made from the quad mesh alone, the writer counts the points and, for PLY, writes
+// the header and the edges on a thread of its own (a GB for a 10M-triangle mesh, beside
+// the cycle's serial spanning tree) as if they made one closed curve; finish() writes the
+// points, turns the last edge of each curve back to its own first point when there are
+// several, and commits. `quads` must stay alive and unchanged until then; destroyed
+// without finish(), the writer leaves no file. The constructor throws a bad --samples and
+// a file that cannot be made; finish() what the thread met, and what write_cycle_curves
+// throws.
 class CycleCurveWriter {
 public:
   CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path);

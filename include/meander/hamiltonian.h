@@ -53,12 +53,6 @@ inline std::array<int32_t, 3> cycle_triangle(const QuadMesh& quads, int32_t id) 
 // UsageError above 2^29 quads (triangle names must fit an int32).
 TriangleCycle hamiltonian_cycle(const QuadMesh& quads, const CycleOptions& options = {});
 
-// The cycle_start that hamiltonian_cycle(quads) gives, whatever its options, without
-// making the cycles: one cycle per connected component, in the order of their first
-// quads, of two triangles per full quad and one per half quad. Lets a writer lay out
-// its file while the cycles are made. O(quads), memory of the largest breadth-first front.
-std::vector<int32_t> cycle_starts(const QuadMesh& quads);
-
 // The loops of the triangulation that `diagonal` gives, without any flip: as many as
 // they are (the duotone's tree rule chooses diagonals that leave one per component).
 // Same requirements and layout as hamiltonian_cycle; O(quads).
