@@ -5,11 +5,15 @@
 #include "meander/error.h"
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <optional>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <string>
 #include <thread>
 #include <utility>
@@ -21,15 +25,18 @@ namespace {
 // The paper's weighted centre: the triangle read as a quad whose apex is doubled.
 Vec3 control_point(Vec3 p, Vec3 apex, Vec3 n) { return (apex * 2.0f + p + n) * 0.25f; }
 
+// The control point of the triangle named `id` (hamiltonian.h).
+Vec3 triangle_control_point(const QuadMesh& quads, int32_t id) {
+  const auto [p, apex, n] = cycle_triangle(quads, id);
+  return control_point(quads.positions[size_t(p)], quads.positions[size_t(apex)], quads.positions[size_t(n)]);
+}
+
 } // namespace
 
 Polylines control_polygons(const QuadMesh& quads, const TriangleCycle& cycle) {
   Polylines out;
   out.points.reserve(cycle.order.size());
-  for (int32_t id : cycle.order) {
-    const auto [p, apex, n] = cycle_triangle(quads, id);
-    out.points.push_back(control_point(quads.positions[size_t(p)], quads.positions[size_t(apex)], quads.positions[size_t(n)]));
-  }
+  for (int32_t id : cycle.order) out.points.push_back(triangle_control_point(quads, id));
   out.start = cycle.cycle_start;
   return out;
 }
@@ -123,6 +130,23 @@ void sample_range(const Point& point, int32_t n, int k, Smoothing smoothing, int
   }
 }
 
+// Points [begin, end) of closed curves whose control point i (counted over all curves)
+// is point(i), curve j having the control points [start[j], start[j + 1]), k points a
+// segment: each curve's part of the range sampled on its own.
+template <typename Point>
+void sample_curves(const Point& point, std::span<const int32_t> start, int k, Smoothing smoothing, int64_t begin,
+                   int64_t end, Vec3* dst) {
+  size_t c = size_t(std::upper_bound(start.begin(), start.end(), int32_t(begin / k)) - start.begin()) - 1;
+  for (; begin < end; ++c) {
+    const int32_t first = start[c], n = start[c + 1] - first;
+    const int64_t stop = std::min<int64_t>(end, int64_t(start[c + 1]) * k);
+    sample_range([&](int32_t i) { return point(first + i); }, n, k, smoothing, begin - int64_t(first) * k,
+                 stop - int64_t(first) * k, dst);
+    dst += stop - begin;
+    begin = stop;
+  }
+}
+
 // Samples closed curves whose control point i of curve k is point(start[k] + i), so
 // that the control polygon need not exist in memory.
 template <typename Point>
@@ -147,10 +171,7 @@ Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& o
 struct CycleControl {
   const QuadMesh* quads;
   const TriangleCycle* cycle;
-  Vec3 operator()(int32_t i) const {
-    const auto [p, apex, n] = cycle_triangle(*quads, cycle->order[size_t(i)]);
-    return control_point(quads->positions[size_t(p)], quads->positions[size_t(apex)], quads->positions[size_t(n)]);
-  }
+  Vec3 operator()(int32_t i) const { return triangle_control_point(*quads, cycle->order[size_t(i)]); }
 };
 
 } // namespace
@@ -163,6 +184,23 @@ Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const 
   return sample_closed(cycle.cycle_start, options, CycleControl{&quads, &cycle});
 }
 
+namespace {
+
+// The curves of the cycles as a stream that samples them when asked, k points a segment.
+io::PolylineStream cycle_stream(const QuadMesh& quads, const TriangleCycle& cycle, int k, Smoothing smoothing) {
+  io::PolylineStream out;
+  out.start = sampled_start(cycle.cycle_start, k);
+  out.points = [control = CycleControl{&quads, &cycle}, start = std::span<const int32_t>(cycle.cycle_start), k,
+                smoothing](int64_t begin, int64_t end, Vec3* dst) {
+    sample_curves(control, start, k, smoothing, begin, end, dst);
+  };
+  return out;
+}
+
+} // namespace
+
+constexpr int32_t kMostPatchedCurves = 1024;
+
 struct CycleCurveWriter::File {
   const QuadMesh& quads;
   std::filesystem::path path;
@@ -171,12 +209,96 @@ struct CycleCurveWriter::File {
   int32_t points = 0;
   // A PLY's layout, written by `thread` as if the points made one closed curve: where the
   // points go, and the edges, of which only the last of each curve differs when there
-  // are several.
+  // are several. The thread then writes the points the walk has settled.
   std::optional<io::AtomicFile> ply;
   uint64_t points_at = 0;
   std::exception_ptr failure;
   std::thread thread;
+  WalkObserver observer;
+  // What the walk has shown, under `mutex`: the triangles walked, and where the cycles
+  // walked start, the last start being the open cycle's (or the end of the last).
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::span<const int32_t> walked;
+  std::vector<int32_t> starts{0};
+  bool done = false;
+  // How far the thread got, for finish() once it has stopped: the segments (one a
+  // control point) before `next` are written, except segment `pending_first`, the first
+  // of a cycle that was open when the thread reached it (-1: none).
+  int64_t next = 0;
+  int64_t pending_first = -1;
+  std::atomic<int64_t> streamed{0};
+
+  void stream_points();
+  void write_segments(std::span<const int32_t> order, std::vector<int32_t> bounds, int64_t begin, int64_t end);
+  void stop() {
+    {
+      std::lock_guard lock(mutex);
+      done = true;
+    }
+    changed.notify_one();
+    if (thread.joinable()) thread.join();
+  }
 };
+
+// The points of segments [begin, end) of the cycles whose control points start at
+// `bounds` (the last maybe only the part walked so far, whose end no segment reaches).
+void CycleCurveWriter::File::write_segments(std::span<const int32_t> order, std::vector<int32_t> bounds, int64_t begin,
+                                            int64_t end) {
+  io::PolylineStream part;
+  part.points = [&](int64_t from, int64_t to, Vec3* dst) {
+    sample_curves([&](int32_t i) { return triangle_control_point(quads, order[size_t(i)]); }, bounds, k,
+                  options.smoothing, from, to, dst);
+  };
+  // The walk has the other core.
+  tbb::task_arena(1).execute([&] { io::write_ply_points(part, *ply, points_at, begin * k, end * k); });
+  streamed += (end - begin) * k;
+}
+
+// A segment needs its cycle's control point before it and the two after it: the first
+// segment of a cycle still open waits for the cycle to close, the last two for the walk
+// to go on.
+void CycleCurveWriter::File::stream_points() {
+  constexpr int64_t most = int64_t(1) << 20; // segments between looks at `done`
+  // The starts of the closed cycles that segments [begin, end) lie in, and their end.
+  const auto bounds = [&](int64_t begin, int64_t end) {
+    const auto from = std::upper_bound(starts.begin(), starts.end(), int32_t(begin)) - 1;
+    const auto to = std::lower_bound(from, starts.end(), int32_t(end));
+    return std::vector<int32_t>(from, to + 1);
+  };
+  std::unique_lock lock(mutex);
+  for (;;) {
+    if (done) return;
+    const int64_t closed = starts.back(), open = int64_t(walked.size()) - closed;
+    if (pending_first >= 0 && pending_first < closed) {
+      const std::vector<int32_t> around = bounds(pending_first, pending_first + 1);
+      const std::span<const int32_t> order = walked;
+      lock.unlock();
+      write_segments(order, around, pending_first, pending_first + 1);
+      pending_first = -1;
+    } else if (next < closed) {
+      const int64_t end = std::min(closed, next + most);
+      const std::vector<int32_t> around = bounds(next, end);
+      const std::span<const int32_t> order = walked;
+      lock.unlock();
+      write_segments(order, around, next, end);
+      next = end;
+    } else if (next == closed && open >= 4) {
+      pending_first = next++;
+      continue;
+    } else if (next > closed && next < closed + open - 2) {
+      const int64_t end = std::min(closed + open - 2, next + most);
+      const std::span<const int32_t> order = walked;
+      lock.unlock();
+      write_segments(order, {int32_t(closed), int32_t(closed + open)}, next, end);
+      next = end;
+    } else {
+      changed.wait(lock);
+      continue;
+    }
+    lock.lock();
+  }
+}
 
 CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path)
     : file_(new File{.quads = quads, .path = path, .options = options}) {
@@ -186,46 +308,33 @@ CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& op
   file_->points = int32_t(triangles * file_->k);
   if (io::lowercase_extension(path) != ".ply") return;
   file_->ply.emplace(path);
+  file_->observer.seen = [f = file_.get()](std::span<const int32_t> walked, std::span<const int32_t> cycle_start) {
+    {
+      std::lock_guard lock(f->mutex);
+      f->walked = walked;
+      f->starts.insert(f->starts.end(), cycle_start.begin() + std::ptrdiff_t(f->starts.size()), cycle_start.end());
+    }
+    f->changed.notify_one();
+  };
   file_->thread = std::thread([f = file_.get()] {
     try {
       f->points_at = io::write_ply_layout({.start = {0, f->points}}, *f->ply);
+      f->stream_points();
     } catch (...) {
       f->failure = std::current_exception();
     }
   });
 }
 
-CycleCurveWriter::~CycleCurveWriter() {
-  if (file_->thread.joinable()) file_->thread.join();
-}
+CycleCurveWriter::~CycleCurveWriter() { file_->stop(); }
 
-namespace {
+const WalkObserver* CycleCurveWriter::observer() const { return file_->ply ? &file_->observer : nullptr; }
 
-// The curves of the cycles as a stream that samples them when asked, k points a segment.
-io::PolylineStream cycle_stream(const QuadMesh& quads, const TriangleCycle& cycle, int k, Smoothing smoothing) {
-  io::PolylineStream out;
-  out.start = sampled_start(cycle.cycle_start, k);
-  out.points = [control = CycleControl{&quads, &cycle}, control_start = cycle.cycle_start, start = out.start, k,
-                smoothing](int64_t begin, int64_t end, Vec3* dst) {
-    // The curve that holds point `begin`, then each curve the range runs into.
-    size_t c = size_t(std::upper_bound(start.begin(), start.end(), int32_t(begin)) - start.begin()) - 1;
-    while (begin < end) {
-      const int32_t first = control_start[c], n = control_start[c + 1] - first;
-      const int64_t stop = std::min<int64_t>(end, start[c + 1]);
-      sample_range([&](int32_t i) { return control(first + i); }, n, k, smoothing, begin - start[c], stop - start[c], dst);
-      dst += stop - begin;
-      begin = stop;
-      ++c;
-    }
-  };
-  return out;
-}
-
-} // namespace
+int64_t CycleCurveWriter::points_written_while_walking() const { return file_->streamed; }
 
 int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
   File& f = *file_;
-  if (f.thread.joinable()) f.thread.join();
+  f.stop();
   if (f.failure) std::rethrow_exception(std::exchange(f.failure, nullptr));
   const io::PolylineStream out = cycle_stream(f.quads, cycle, f.k, f.options.smoothing);
   if (out.start.back() != f.points)
@@ -234,10 +343,14 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
   if (!f.ply) {
     io::write_polylines(out, f.path);
   } else {
-    io::write_ply_points(out, *f.ply, f.points_at);
-    // The last edge of each curve goes back to its own first point (one per connected
-    // component, so these are few).
-    if (out.size() > 1)
+    if (f.pending_first >= 0) io::write_ply_points(out, *f.ply, f.points_at, f.pending_first * f.k, (f.pending_first + 1) * f.k);
+    io::write_ply_points(out, *f.ply, f.points_at, f.next * f.k, f.points);
+    // The last edge of each curve goes back to its own first point: patched one by one
+    // while that costs less than writing all the edges again (a triangle soup has a
+    // curve per triangle).
+    if (out.size() > kMostPatchedCurves)
+      io::write_ply_edges(out, *f.ply, f.points_at);
+    else if (out.size() > 1)
       for (int32_t c = 0; c < out.size(); ++c) {
         const int32_t last = out.start[size_t(c) + 1] - 1;
         f.ply->seek(f.points_at + 12 * uint64_t(f.points) + 8 * uint64_t(last));

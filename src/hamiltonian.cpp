@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -91,13 +92,19 @@ void require_cycle_size(const QuadMesh& m) {
 }
 
 // The loops of the triangulation `diagonal` gives, each walked once from its first
-// triangle in quad order.
-TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal) {
+// triangle in quad order, told to `observer` as they are walked.
+TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal, const WalkObserver* observer) {
   const int32_t nq = m.num_quads();
   TriangleCycle result;
   result.diagonal = std::move(diagonal);
   std::vector<uint8_t> visited(2 * size_t(nq), 0);
+  // Never more than two triangles a quad: the order's memory never moves, as observers need.
   result.order.reserve(2 * size_t(nq));
+  int64_t report_at = observer ? observer->every : std::numeric_limits<int64_t>::max();
+  const auto report = [&] {
+    observer->seen(result.order, result.cycle_start);
+    report_at = int64_t(result.order.size()) + observer->every;
+  };
   for (int32_t q = 0; q < nq; ++q) {
     const uint8_t d = result.diagonal[size_t(q)];
     for (int a = m.is_half(q) ? 3 : 1 - d; a <= 3; a += 2) {
@@ -105,16 +112,18 @@ TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal) {
       walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) {
         visited[size_t(slot(tq, ta))] = 1;
         result.order.push_back(4 * tq + ta);
+        if (int64_t(result.order.size()) >= report_at) report();
       });
       result.cycle_start.push_back(int32_t(result.order.size()));
     }
   }
+  if (observer) report();
   return result;
 }
 
 } // namespace
 
-TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) {
+TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, const WalkObserver* observer) {
   require_cycle_size(m);
   const int32_t nq = m.num_quads();
   const bool initial = !options.initial_diagonal.empty();
@@ -165,14 +174,14 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options) 
   for (int32_t e : spanning_forest(graph, options.tree, options.seed)) diagonal[size_t(edge_quad[size_t(e)])] ^= 1;
   graph = Graph();
   std::vector<int32_t>().swap(edge_quad);
-  return loops_of(m, std::move(diagonal));
+  return loops_of(m, std::move(diagonal), observer);
 }
 
 TriangleCycle triangle_loops(const QuadMesh& m, std::vector<uint8_t> diagonal) {
   require_cycle_size(m);
   if (int64_t(diagonal.size()) != m.num_quads())
     throw UsageError("diagonals: " + std::to_string(diagonal.size()) + " for " + std::to_string(m.num_quads()) + " quads");
-  return loops_of(m, std::move(diagonal));
+  return loops_of(m, std::move(diagonal), nullptr);
 }
 
 std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {

@@ -85,7 +85,7 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   watch.lap("quadrangulate");
   std::optional<CycleCurveWriter> writer;
   if (!job.sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
-  result.cycle = hamiltonian_cycle(result.quads, job.cycle);
+  result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
   watch.lap("cycle");
   if (writer) {
     result.points_written = writer->finish(result.cycle);

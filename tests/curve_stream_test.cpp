@@ -9,7 +9,9 @@
 #include "meander/pipeline.h"
 #include "meander/shapes.h"
 
+#include <chrono>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -30,6 +32,17 @@ PolygonMesh sphere_and_torus() {
   return m;
 }
 
+// Separate triangles, a curve each: more curves than a writer patches one by one.
+PolygonMesh triangle_soup(int32_t triangles) {
+  PolygonMesh m;
+  for (int32_t t = 0; t < triangles; ++t) {
+    const Vec3 at{float(t % 50) * 2, float(t / 50) * 2, 0};
+    for (const Vec3 corner : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0.5f}}) m.positions.push_back(at + corner);
+    m.add_face({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  return m;
+}
+
 std::vector<std::pair<std::string, PolygonMesh>> meshes() {
   std::vector<std::pair<std::string, PolygonMesh>> out = {
       {"sphere", sphere(200)},
@@ -39,6 +52,7 @@ std::vector<std::pair<std::string, PolygonMesh>> meshes() {
       // 45,000 quads, 90,000 control points: with 3 samples a segment straddles the
       // writers' 65,536-point blocks.
       {"large sphere", sphere(30000)},
+      {"triangle soup", triangle_soup(1500)},
   };
   if (std::filesystem::is_directory(shared_meshes()))
     out.emplace_back("platonic_shelf.obj (5 components)", read_mesh(shared_meshes() / "platonic_shelf.obj"));
@@ -92,6 +106,56 @@ TEST(CurveStream, PipelineWritesTheOutputWhileMakingTheCycle) {
       EXPECT_EQ(times.back().first, sample ? "write curve" : "smooth + write");
     }
   }
+}
+
+// The points a writer may write of a walk shown up to `walked` triangles: every segment
+// of the closed cycles, and of the open one those with their control points before and
+// two after walked, which leaves out its first segment and its last two.
+int64_t settled_points(const TriangleCycle& cycle, int64_t walked, int k) {
+  int64_t segments = 0;
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const int64_t first = cycle.cycle_start[size_t(c)], end = cycle.cycle_start[size_t(c) + 1];
+    if (end <= walked) segments += end - first;
+    else if (walked - first >= 4) segments += walked - first - 3;
+  }
+  return segments * k;
+}
+
+// The writer's thread writes what the walk has settled while the walk goes on. Shown a
+// walk in steps, it writes exactly the settled points before finish(), and the file is
+// the same as ever.
+TEST(CurveStream, WriterWritesThePointsOfTheWalkSoFar) {
+  const auto dir = output_dir();
+  for (const auto& [name, mesh] : meshes()) {
+    const CurveResult made = make_curve(mesh, {.cycle = {.seed = 7}, .sample = false});
+    for (const CurveOptions& option : {CurveOptions{Smoothing::bspline, 4}, CurveOptions{Smoothing::catmull_rom, 3}}) {
+      write_polylines(cycle_curves(made.quads, made.cycle, option), dir / "held.ply");
+      CycleCurveWriter writer(made.quads, option, dir / "walked.ply");
+      const WalkObserver* observer = writer.observer();
+      ASSERT_NE(observer, nullptr);
+      // Steps of a thirteenth of the triangles, as the walk tells them.
+      const int64_t total = made.cycle.num_triangles(), step = total / 13 + 1;
+      for (int64_t walked = 0; walked < total;) {
+        walked = std::min(walked + step, total);
+        const auto closed = std::upper_bound(made.cycle.cycle_start.begin(), made.cycle.cycle_start.end(), int32_t(walked));
+        observer->seen(std::span<const int32_t>(made.cycle.order.data(), size_t(walked)),
+                       std::span<const int32_t>(made.cycle.cycle_start.begin(), closed));
+        const int64_t settled = settled_points(made.cycle, walked, option.samples);
+        for (int wait = 0; wait < 10000 && writer.points_written_while_walking() < settled; ++wait)
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        ASSERT_EQ(writer.points_written_while_walking(), settled) << name << " walked " << walked;
+      }
+      EXPECT_EQ(writer.finish(made.cycle), total * option.samples);
+      EXPECT_TRUE(read_file(dir / "held.ply") == read_file(dir / "walked.ply")) << name;
+    }
+  }
+}
+
+// Only a PLY's thread writes points while the walk goes on.
+TEST(CurveStream, OnlyAPlyWriterObservesTheWalk) {
+  const CurveResult made = make_curve(sphere(200), {.sample = false});
+  CycleCurveWriter obj(made.quads, {}, output_dir() / "observed.obj");
+  EXPECT_EQ(obj.observer(), nullptr);
 }
 
 // A writer destroyed before finish() (the cycle failed) leaves neither the file nor its

@@ -88,6 +88,39 @@ INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
                                   std::string(to_string(std::get<1>(param_info.param)));
                          });
 
+// An observer is shown growing prefixes of the final order, in the same memory, every
+// `every` triangles and when the walk ends, with the cycles' starts walked so far.
+TEST(Cycle, ObserverIsShownTheWalkAsItGoes) {
+  const PolygonMesh mesh = interleaved_spheres();
+  const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+  struct Seen {
+    const int32_t* data;
+    std::vector<int32_t> walked, cycle_start;
+  };
+  std::vector<Seen> seen;
+  const WalkObserver observer{.every = 100, .seen = [&](std::span<const int32_t> walked, std::span<const int32_t> starts) {
+                                seen.push_back({walked.data(), {walked.begin(), walked.end()}, {starts.begin(), starts.end()}});
+                              }};
+  const TriangleCycle cycle = hamiltonian_cycle(quads, {.seed = 2}, &observer);
+  const TriangleCycle unobserved = hamiltonian_cycle(quads, {.seed = 2});
+  ASSERT_EQ(cycle.order, unobserved.order);
+  ASSERT_EQ(cycle.cycle_start, unobserved.cycle_start);
+  ASSERT_EQ(cycle.num_cycles(), 3);
+  ASSERT_EQ(seen.size(), cycle.order.size() / 100 + 1);
+  for (size_t i = 0; i < seen.size(); ++i) {
+    const Seen& s = seen[i];
+    EXPECT_EQ(s.data, cycle.order.data());
+    EXPECT_EQ(s.walked.size(), i + 1 < seen.size() ? 100 * (i + 1) : cycle.order.size());
+    EXPECT_TRUE(std::equal(s.walked.begin(), s.walked.end(), cycle.order.begin()));
+    // The starts of the cycles walked into, and the end of the last closed one.
+    ASSERT_LE(s.cycle_start.size(), cycle.cycle_start.size());
+    EXPECT_TRUE(std::equal(s.cycle_start.begin(), s.cycle_start.end(), cycle.cycle_start.begin()));
+    EXPECT_LE(s.cycle_start.back(), int32_t(s.walked.size()));
+    if (s.cycle_start.size() < cycle.cycle_start.size()) EXPECT_GE(cycle.cycle_start[s.cycle_start.size()], int32_t(s.walked.size()));
+  }
+  EXPECT_EQ(seen.back().cycle_start, cycle.cycle_start);
+}
+
 // The face-loop shortcut of dual_simplest and the general loop labelling must both give
 // a valid single cycle (they number the loops differently, so the trees differ).
 TEST(Cycle, FaceLoopShortcutMatchesGeneralLabelling) {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -46,12 +47,25 @@ inline std::array<int32_t, 3> cycle_triangle(const QuadMesh& quads, int32_t id) 
   return {c[size_t((a + 3) & 3)], c[size_t(a)], c[size_t((a + 1) & 3)]};
 }
 
+// Told, on the thread that walks the final cycles, what of them is settled while the walk
+// goes on, so that another thread can use it before hamiltonian_cycle returns: a writer
+// samples and writes the curve of the triangles walked so far while the rest is walked.
+// `walked` is a prefix of the result's order, in memory that stays where it is and
+// unchanged while the result lives; `cycle_start` is the result's cycle_start so far
+// (valid during the call only), its last entry the start of the cycle still being walked,
+// or walked.size() when none is. Called every `every` triangles and when the walk ends.
+struct WalkObserver {
+  int64_t every = int64_t(1) << 20;
+  std::function<void(std::span<const int32_t> walked, std::span<const int32_t> cycle_start)> seen;
+};
+
 // Builds one cycle per connected component of the quad mesh (components joined across
 // quad sides). Every full quad contributes two triangles, a half quad one. Time O(quads)
 // plus the spanning forest. Throws TopologyError if a full quad has a side with no
 // neighbour (a quad mesh with boundary: only half quads may end at a boundary), and
 // UsageError above 2^29 quads (triangle names must fit an int32).
-TriangleCycle hamiltonian_cycle(const QuadMesh& quads, const CycleOptions& options = {});
+TriangleCycle hamiltonian_cycle(const QuadMesh& quads, const CycleOptions& options = {},
+                                const WalkObserver* observer = nullptr);
 
 // The loops of the triangulation that `diagonal` gives, without any flip: as many as
 // they are (the duotone's tree rule chooses diagonals that leave one per component).

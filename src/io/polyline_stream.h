@@ -34,8 +34,12 @@ void write_polylines(const PolylineStream& curves, const std::filesystem::path& 
 // write_polylines' PLY in two steps, for a writer that knows the polylines' sizes before
 // their points: write_ply_layout writes the header and the edges, which depend on
 // curves.start and curves.open alone (8 bytes an edge, a GB for a 10M-triangle curve),
-// leaving room for the points and returning where they go; write_ply_points fills it.
+// leaving room for the points and returning where they go; write_ply_points fills it,
+// all of it or the points [begin, end) (a writer that gets its points a part at a time).
+// write_ply_edges writes the edges again, for polylines of the same number of points.
 uint64_t write_ply_layout(const PolylineStream& curves, AtomicFile& out);
+void write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t points_at);
 void write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at);
+void write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at, int64_t begin, int64_t end);
 
 } // namespace meander::io

@@ -121,20 +121,35 @@ void write_svg_polylines(const io::PolylineStream& curves, io::AtomicFile& out) 
 
 } // namespace
 
-uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
-  // A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point
-  // has none. edge_start[k]: the first edge of polyline k.
+namespace {
+
+// A closed polyline of n >= 2 points has n edges, an open one n - 1; a single point has
+// none. Entry k: the first edge of polyline k.
+std::vector<int64_t> ply_edge_start(const io::PolylineStream& curves) {
   std::vector<int64_t> edge_start(size_t(curves.size()) + 1, 0);
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t n = curves.start[k + 1] - curves.start[k];
     edge_start[size_t(k) + 1] = edge_start[size_t(k)] + (n < 2 ? 0 : curves.closed(k) ? n : n - 1);
   }
+  return edge_start;
+}
+
+} // namespace
+
+uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
+  const std::vector<int64_t> edge_start = ply_edge_start(curves);
   out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
   out.integer(curves.start.back());
   out.text("\nproperty float x\nproperty float y\nproperty float z\nelement edge ");
   out.integer(edge_start.back());
   out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
   const uint64_t points_at = out.position();
+  write_ply_edges(curves, out, points_at);
+  return points_at;
+}
+
+void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
+  const std::vector<int64_t> edge_start = ply_edge_start(curves);
   out.seek(points_at + 12 * uint64_t(curves.start.back()));
   io::write_blocks(out, edge_start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
     bytes.resize(size_t(end - begin) * 8);
@@ -150,16 +165,19 @@ uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
       io::store_little_endian(at + 4, i == last ? first : i + 1);
     }
   });
-  return points_at;
 }
 
 void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
-  out.seek(points_at);
+  write_ply_points(curves, out, points_at, 0, curves.start.back());
+}
+
+void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at, int64_t begin, int64_t end) {
+  out.seek(points_at + 12 * uint64_t(begin));
   // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
   // all cores and written in order.
-  io::write_blocks(out, curves.start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
-    std::vector<Vec3> points(size_t(end - begin));
-    curves.points(begin, end, points.data());
+  io::write_blocks(out, end - begin, block_points, [&, first = begin](int64_t from, int64_t to, std::vector<char>& bytes) {
+    std::vector<Vec3> points(size_t(to - from));
+    curves.points(first + from, first + to, points.data());
     bytes.resize(points.size() * 12);
     char* at = bytes.data();
     for (const Vec3& p : points) {
