@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <numeric>
 #include <span>
 #include <string>
@@ -67,29 +68,74 @@ Adjacency build_adjacency(const Graph& g) {
 }
 
 // One Borůvka round: adds each node's lightest edge under `weight` (distinct per edge) to
-// `forest`, and labels the nodes 0, 1, ... by the trees those edges make. Returns the
-// number of labels.
+// `forest`, and labels the nodes 0, 1, ... by the trees those edges make, in the order
+// of their smallest nodes. Returns the number of labels. Every pass is parallel: with
+// distinct weights each tree of lightest edges has exactly one edge chosen from both
+// ends, so a node's parent can be the other end of its own lightest edge, the smaller
+// node of that doubly chosen edge being the root, and no union-find is needed.
 template <typename Weight>
 int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>& label, std::vector<int32_t>& forest) {
   const int32_t n = g.num_nodes;
+  const auto nodes = tbb::blocked_range<int32_t>(0, n, 1 << 16);
   std::fill(label.begin(), label.end(), -1); // first each node's lightest edge
-  for (int32_t e = 0; e < int32_t(g.edges.size()); ++e) {
-    const auto [u, v] = g.edges[size_t(e)];
-    if (u == v) continue;
-    const uint64_t w = weight(e);
-    for (const int32_t x : {u, v})
-      if (label[size_t(x)] < 0 || w < weight(label[size_t(x)])) label[size_t(x)] = e;
-  }
-  UnionFind sets(n);
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, int32_t(g.edges.size()), 1 << 16), [&](const auto& range) {
+    for (int32_t e = range.begin(); e < range.end(); ++e) {
+      const auto [u, v] = g.edges[size_t(e)];
+      if (u == v) continue;
+      const uint64_t w = weight(e);
+      for (const int32_t x : {u, v}) {
+        std::atomic_ref<int32_t> lightest(label[size_t(x)]);
+        for (int32_t now = lightest.load(std::memory_order_relaxed); now < 0 || w < weight(now);)
+          if (lightest.compare_exchange_weak(now, e, std::memory_order_relaxed)) break;
+      }
+    }
+  });
+  const auto other_end = [&](int32_t x) {
+    const int32_t e = label[size_t(x)];
+    return e < 0 ? x : g.edges[size_t(e)][0] == x ? g.edges[size_t(e)][1] : g.edges[size_t(e)][0];
+  };
+  std::vector<int32_t> parent(static_cast<size_t>(n));
+  tbb::parallel_for(nodes, [&](const auto& range) {
+    for (int32_t x = range.begin(); x < range.end(); ++x) {
+      const int32_t y = other_end(x);
+      parent[size_t(x)] = y != x && other_end(y) == x && x < y ? x : y;
+    }
+  });
   for (int32_t x = 0; x < n; ++x)
-    if (const int32_t e = label[size_t(x)]; e >= 0 && sets.unite(g.edges[size_t(e)][0], g.edges[size_t(e)][1]))
-      forest.push_back(e);
-  int32_t trees = 0;
-  for (int32_t x = 0; x < n; ++x)
-    if (sets.is_root(x)) label[size_t(x)] = trees++;
-  for (int32_t x = 0; x < n; ++x)
-    if (!sets.is_root(x)) label[size_t(x)] = label[size_t(sets.find(x))];
-  return trees;
+    if (parent[size_t(x)] != x) forest.push_back(label[size_t(x)]);
+  // Each node to its root, halving the path as it goes (another thread only ever sees a
+  // parent move up towards the same root). Along a path the lightest edges' weights
+  // fall, so with random weights paths are short.
+  tbb::parallel_for(nodes, [&](const auto& range) {
+    const auto up = [&](int32_t x) { return std::atomic_ref<int32_t>(parent[size_t(x)]); };
+    for (int32_t x = range.begin(); x < range.end(); ++x) {
+      int32_t at = x, p = up(x).load(std::memory_order_relaxed);
+      for (int32_t grandparent; (grandparent = up(p).load(std::memory_order_relaxed)) != p;) {
+        up(at).store(grandparent, std::memory_order_relaxed);
+        at = grandparent;
+        p = up(at).load(std::memory_order_relaxed);
+      }
+      up(x).store(p, std::memory_order_relaxed);
+    }
+  });
+  // The roots numbered in node order: counted by fixed chunks, then numbered in each.
+  constexpr int32_t chunks = 64;
+  const int32_t chunk = (n + chunks - 1) / chunks;
+  std::array<int32_t, chunks + 1> first_tree{};
+  tbb::parallel_for(0, chunks, [&](int32_t c) {
+    for (int32_t x = c * chunk; x < std::min(n, (c + 1) * chunk); ++x) first_tree[size_t(c) + 1] += parent[size_t(x)] == x;
+  });
+  for (int32_t c = 0; c < chunks; ++c) first_tree[size_t(c) + 1] += first_tree[size_t(c)];
+  tbb::parallel_for(0, chunks, [&](int32_t c) {
+    int32_t tree = first_tree[size_t(c)];
+    for (int32_t x = c * chunk; x < std::min(n, (c + 1) * chunk); ++x)
+      if (parent[size_t(x)] == x) label[size_t(x)] = tree++;
+  });
+  tbb::parallel_for(nodes, [&](const auto& range) {
+    for (int32_t x = range.begin(); x < range.end(); ++x)
+      if (parent[size_t(x)] != x) label[size_t(x)] = label[size_t(parent[size_t(x)])];
+  });
+  return first_tree.back();
 }
 
 // Kruskal over the edges in the order of random keys, or with `ranked` by increasing
