@@ -452,6 +452,34 @@ TEST(CheckRepair, BowTieVertexIsSplit) {
   EXPECT_EQ(inspect(r.mesh).components.size(), 2u);
 }
 
+// A closed fan (a tetrahedron's corner) and an open one (three triangles) at vertex 0,
+// in both orders: walked round from the vertex's first corner, either fan shows that it
+// holds only some of the vertex's corners.
+TEST(CheckRepair, ClosedAndOpenFanAtOneVertexAreSplit) {
+  const PolygonMesh closed = tetrahedron();
+  PolygonMesh open;
+  open.positions = {{0, 0, 0}, {-1, 0, 0}, {-1, -1, 0}, {0, -1, -0.5f}, {0.5f, -1, -1}};
+  open.add_face({0, 1, 2});
+  open.add_face({0, 2, 3});
+  open.add_face({0, 3, 4});
+  for (const bool closed_first : {true, false}) {
+    const PolygonMesh& a = closed_first ? closed : open;
+    const PolygonMesh& b = closed_first ? open : closed;
+    PolygonMesh m = a;
+    for (int32_t v = 1; v < b.num_vertices(); ++v) m.positions.push_back(b.positions[size_t(v)]);
+    for (int32_t f = 0; f < b.num_faces(); ++f) {
+      std::vector<int32_t> face(b.face(f).begin(), b.face(f).end());
+      for (int32_t& v : face) v = v == 0 ? 0 : v + a.num_vertices() - 1;
+      m.add_face(face);
+    }
+    const RepairResult r = repair(m, "x.obj");
+    EXPECT_EQ(r.repairs, std::vector<std::string>{"split 1 non-manifold vertex into 2 copies (vertex 0 had 2 fans)"})
+        << closed_first;
+    expect_repaired(r.mesh);
+    EXPECT_EQ(inspect(r.mesh).components.size(), 2u);
+  }
+}
+
 TEST(CheckRepair, ThreeTrianglesOnOneEdgeAreCutApart) {
   const PolygonMesh m = three_triangles_on_one_edge();
   EXPECT_EQ(strict_error(m), "x.obj: edge (0,1) is shared by 3 faces: mesh is not manifold");

@@ -116,7 +116,9 @@ TEST(Cycle, ObserverIsShownTheWalkAsItGoes) {
     ASSERT_LE(s.cycle_start.size(), cycle.cycle_start.size());
     EXPECT_TRUE(std::equal(s.cycle_start.begin(), s.cycle_start.end(), cycle.cycle_start.begin()));
     EXPECT_LE(s.cycle_start.back(), int32_t(s.walked.size()));
-    if (s.cycle_start.size() < cycle.cycle_start.size()) EXPECT_GE(cycle.cycle_start[s.cycle_start.size()], int32_t(s.walked.size()));
+    if (s.cycle_start.size() < cycle.cycle_start.size()) {
+      EXPECT_GE(cycle.cycle_start[s.cycle_start.size()], int32_t(s.walked.size()));
+    }
   }
   EXPECT_EQ(seen.back().cycle_start, cycle.cycle_start);
 }

@@ -43,7 +43,8 @@ struct CurveJob {
   // or with write_cycle_curves instead of holding them.
   bool sample = true;
   // Not empty: make_curve also writes the curves there (as write_polylines would), and
-  // with `sample` false lays the file out while the cycle is made (CycleCurveWriter).
+  // with `sample` false writes a PLY's edges while the cycle is made and its points while
+  // the cycle is walked (CycleCurveWriter).
   std::filesystem::path output;
 };
 
