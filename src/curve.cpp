@@ -270,32 +270,29 @@ void CycleCurveWriter::File::stream_points() {
   for (;;) {
     if (done) return;
     const int64_t closed = starts.back(), open = int64_t(walked.size()) - closed;
-    if (pending_first >= 0 && pending_first < closed) {
-      const std::vector<int32_t> around = bounds(pending_first, pending_first + 1);
-      const std::span<const int32_t> order = walked;
-      lock.unlock();
-      write_segments(order, around, pending_first, pending_first + 1);
-      pending_first = -1;
-    } else if (next < closed) {
-      const int64_t end = std::min(closed, next + most);
-      const std::vector<int32_t> around = bounds(next, end);
-      const std::span<const int32_t> order = walked;
-      lock.unlock();
-      write_segments(order, around, next, end);
-      next = end;
-    } else if (next == closed && open >= 4) {
-      pending_first = next++;
-      continue;
+    if (pending_first < 0 && next == closed && open >= 4) pending_first = next++;
+    // The next segments to write, and the starts of the cycles they lie in.
+    const bool closes_pending = pending_first >= 0 && pending_first < closed;
+    const int64_t begin = closes_pending ? pending_first : next;
+    int64_t end = 0;
+    std::vector<int32_t> around;
+    if (closes_pending || next < closed) {
+      end = closes_pending ? begin + 1 : std::min(closed, next + most);
+      around = bounds(begin, end);
     } else if (next > closed && next < closed + open - 2) {
-      const int64_t end = std::min(closed + open - 2, next + most);
-      const std::span<const int32_t> order = walked;
-      lock.unlock();
-      write_segments(order, {int32_t(closed), int32_t(closed + open)}, next, end);
-      next = end;
+      end = std::min(closed + open - 2, next + most);
+      around = {int32_t(closed), int32_t(closed + open)};
     } else {
       changed.wait(lock);
       continue;
     }
+    const std::span<const int32_t> order = walked;
+    lock.unlock();
+    write_segments(order, std::move(around), begin, end);
+    if (closes_pending)
+      pending_first = -1;
+    else
+      next = end;
     lock.lock();
   }
 }
