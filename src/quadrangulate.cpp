@@ -56,34 +56,28 @@ QuadMesh quads_with_adjacency(PolygonMesh quad_faces) {
   return q;
 }
 
-} // namespace
-
-namespace {
-
-// dual_simplest with the vertex positions given apart, so the consuming overload can
-// move them in instead of copying; mesh.positions is not read.
-QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions, const Connectivity& c) {
+// Dual of Simplest in three passes, each reading fewer of the input's arrays, so that the
+// consuming overload can release them in between (`release(pass)` after each pass): the
+// quads are the largest arrays so far, and every page the run takes fresh costs more than
+// the work done in it on a virtual machine (docs/benchmarks.md).
+template <typename Release>
+QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& positions, const Connectivity& c,
+                              Release&& release) {
   const int32_t nv = int32_t(positions.size());
   const int32_t nf = mesh.num_faces();
   const int32_t ne = c.num_edges();
   QuadMesh q;
   q.face_point_offset = nv;
-  q.positions = std::move(positions);
-  q.positions.resize(size_t(nv) + size_t(nf));
-  // Every loop below writes only its own elements, so each runs in parallel.
-  const std::span<const Vec3> vertices(q.positions.data(), size_t(nv));
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
-    for (int32_t f = faces.begin(); f < faces.end(); ++f) q.positions[size_t(nv + f)] = face_point(mesh, vertices, f);
-  });
 
-  // Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
+  // 1. Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
   // F_a and its second halfedge b lies in face F_b. Each halfedge h of face F touches two
-  // black edges of its quad: (F, tail h) and (head h, F); tail_side/head_side say which
-  // quad sides those are. The second halfedge may run either way (non-orientable or
-  // misoriented input), which changes its sides.
+  // black edges of its quad: (F, tail h) and (head h, F); sides[h] says which quad sides
+  // those are (tail side in bits 0-1, head side in bits 2-3). The second halfedge may run
+  // either way (non-orientable or misoriented input), which changes its sides. Every loop
+  // writes only its own elements, so each runs in parallel.
   q.quads.resize(size_t(ne));
-  q.neighbors.resize(size_t(ne));
-  std::vector<uint8_t> tail_side(size_t(mesh.num_corners())), head_side(size_t(mesh.num_corners()));
+  std::vector<uint8_t> sides(size_t(mesh.num_corners()));
+  constexpr auto pack = [](int tail, int head) { return uint8_t(tail | head << 2); };
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, ne, 1 << 14), [&](const tbb::blocked_range<int32_t>& edges) {
     for (int32_t e = edges.begin(); e < edges.end(); ++e) {
       const auto hs = c.halfedges(e);
@@ -91,30 +85,40 @@ QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions
       const int32_t x = mesh.face_vertices[size_t(a)];
       const int32_t y = halfedge_target(mesh, c, a);
       const int32_t fa = nv + c.halfedge_face[size_t(a)];
-      tail_side[size_t(a)] = 3;
-      head_side[size_t(a)] = 2;
-      q.neighbors[size_t(e)] = {-1, -1, -1, -1};
+      sides[size_t(a)] = pack(3, 2);
       if (hs.size() == 1) {
         q.quads[size_t(e)] = {x, -1, y, fa};
         continue;
       }
       const int32_t b = hs[1];
       q.quads[size_t(e)] = {x, nv + c.halfedge_face[size_t(b)], y, fa};
-      const bool same_direction = mesh.face_vertices[size_t(b)] == x;
-      tail_side[size_t(b)] = same_direction ? 0 : 1;
-      head_side[size_t(b)] = same_direction ? 1 : 0;
+      sides[size_t(b)] = mesh.face_vertices[size_t(b)] == x ? pack(0, 1) : pack(1, 0);
     }
   });
-  // The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
-  // is shared by the quads of h and next(h); each quad side is written by one corner.
+  release(1);
+
+  // 2. Face points after the vertices.
+  q.positions = std::move(positions);
+  q.positions.resize(size_t(nv) + size_t(nf));
+  const std::span<const Vec3> vertices(q.positions.data(), size_t(nv));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
+    for (int32_t f = faces.begin(); f < faces.end(); ++f) q.positions[size_t(nv + f)] = face_point(mesh, vertices, f);
+  });
+  release(2);
+
+  // 3. The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
+  // is shared by the quads of h and next(h); each quad side is written by one corner, and
+  // the sides no corner writes (a half quad's 0 and 1) stay -1.
+  q.neighbors.assign(size_t(ne), {-1, -1, -1, -1});
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
     for (int32_t f = faces.begin(); f < faces.end(); ++f) {
       const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
       for (int32_t h = first; h < last; ++h) {
         const int32_t g = h + 1 == last ? first : h + 1;
         const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
-        q.neighbors[size_t(qh)][head_side[size_t(h)]] = 4 * qg + tail_side[size_t(g)];
-        q.neighbors[size_t(qg)][tail_side[size_t(g)]] = 4 * qh + head_side[size_t(h)];
+        const int head = sides[size_t(h)] >> 2, tail = sides[size_t(g)] & 3;
+        q.neighbors[size_t(qh)][size_t(head)] = 4 * qg + tail;
+        q.neighbors[size_t(qg)][size_t(tail)] = 4 * qh + head;
       }
     }
   });
@@ -125,15 +129,21 @@ QuadMesh dual_simplest_with(const PolygonMesh& mesh, std::vector<Vec3> positions
 
 QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
   require_manifold_edges(c);
-  return dual_simplest_with(mesh, mesh.positions, c);
+  return dual_simplest_passes(mesh, std::vector<Vec3>(mesh.positions), c, [](int) {});
 }
 
 QuadMesh dual_simplest(PolygonMesh&& mesh, Connectivity&& c) {
   require_manifold_edges(c);
-  // The quads are the largest arrays so far: release what they do not need first (the
-  // edge count comes from edge_start).
   std::vector<std::array<int32_t, 2>>().swap(c.edge_vertices);
-  QuadMesh q = dual_simplest_with(mesh, std::move(mesh.positions), c);
+  QuadMesh q = dual_simplest_passes(mesh, std::move(mesh.positions), c, [&](int pass) {
+    if (pass == 1) { // the quads' corners are known: only the corners' edges are left to read
+      std::vector<int32_t>().swap(c.halfedge_face);
+      std::vector<int32_t>().swap(c.edge_halfedges);
+      std::vector<int32_t>().swap(c.edge_start);
+    } else { // the face points are placed: faces are only walked round from here on
+      std::vector<int32_t>().swap(mesh.face_vertices);
+    }
+  });
   mesh = PolygonMesh();
   c = Connectivity();
   return q;
