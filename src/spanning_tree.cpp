@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <numeric>
-#include <span>
 #include <string>
 #include <utility>
 
@@ -67,32 +65,90 @@ Adjacency build_adjacency(const Graph& g) {
   return a;
 }
 
-// One Borůvka round: adds each node's lightest edge under `weight` (distinct per edge) to
-// `forest`, and labels the nodes 0, 1, ... by the trees those edges make, in the order
-// of their smallest nodes. Returns the number of labels. Every pass is parallel: with
-// distinct weights each tree of lightest edges has exactly one edge chosen from both
-// ends, so a node's parent can be the other end of its own lightest edge, the smaller
-// node of that doubly chosen edge being the root, and no union-find is needed.
-template <typename Weight>
-int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>& label, std::vector<int32_t>& forest) {
-  const int32_t n = g.num_nodes;
+// An edge as a Borůvka round weighs it: its key (random bits, under the rank when
+// ranked) in the high half and its place in the list of edges left in the low half, which
+// orders edges as their ids do, since every list keeps the order of the one before.
+using Weight = uint64_t;
+inline Weight weigh(uint32_t key, int32_t place) { return Weight(key) << 32 | uint32_t(place); }
+inline int32_t place_of(Weight w) { return int32_t(uint32_t(w)); }
+
+// An edge between two trees of the forest so far: the trees' labels and the edge's id in
+// the graph.
+struct TreeEdge {
+  int32_t u, v, id;
+};
+
+// The graph's edges as the first round reads them. Keys are hashed where they are
+// needed, once per edge and round, which costs less than keeping them.
+template <typename Key>
+struct GraphEdges {
+  const Graph& g;
+  const Key& key;
+  int32_t size() const { return int32_t(g.edges.size()); }
+  std::array<int32_t, 2> ends(int32_t i) const { return g.edges[size_t(i)]; }
+  int32_t id(int32_t i) const { return i; }
+  Weight weight(int32_t i) const { return weigh(key(i), i); }
+};
+
+template <typename Key>
+struct TreeEdges {
+  const std::vector<TreeEdge>& edges;
+  const Key& key;
+  int32_t size() const { return int32_t(edges.size()); }
+  std::array<int32_t, 2> ends(int32_t i) const { return {edges[size_t(i)].u, edges[size_t(i)].v}; }
+  int32_t id(int32_t i) const { return edges[size_t(i)].id; }
+  Weight weight(int32_t i) const { return weigh(key(id(i)), i); }
+};
+
+// Runs body(chunk, begin, end) over `count` items cut into a fixed number of chunks, in
+// parallel, and returns each chunk's start in an output body() fills with the number of
+// items it returns per chunk: the same order whatever the number of threads.
+constexpr int32_t kChunks = 64;
+template <typename Count>
+std::array<int32_t, kChunks + 1> chunk_offsets(int32_t count, Count&& counted) {
+  const int32_t chunk = (count + kChunks - 1) / kChunks;
+  std::array<int32_t, kChunks + 1> at{};
+  tbb::parallel_for(0, kChunks, [&](int32_t c) {
+    at[size_t(c) + 1] = counted(c * chunk, std::min(count, (c + 1) * chunk));
+  });
+  for (int32_t c = 0; c < kChunks; ++c) at[size_t(c) + 1] += at[size_t(c)];
+  return at;
+}
+
+template <typename Body>
+void for_chunks(int32_t count, Body&& body) {
+  const int32_t chunk = (count + kChunks - 1) / kChunks;
+  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, c * chunk, std::min(count, (c + 1) * chunk)); });
+}
+
+// One Borůvka round over n nodes: adds each node's lightest edge to `forest`, and labels
+// the nodes 0, 1, ... by the trees those edges make, in the order of their smallest
+// nodes. Returns the number of labels. Every pass is parallel: with distinct weights each
+// tree of lightest edges has exactly one edge chosen from both ends, so a node's parent
+// can be the other end of its own lightest edge, the smaller node of that doubly chosen
+// edge being the root, and no union-find is needed.
+template <typename Edges>
+int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label, std::vector<int32_t>& forest) {
   const auto nodes = tbb::blocked_range<int32_t>(0, n, 1 << 16);
-  std::fill(label.begin(), label.end(), -1); // first each node's lightest edge
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, int32_t(g.edges.size()), 1 << 16), [&](const auto& range) {
-    for (int32_t e = range.begin(); e < range.end(); ++e) {
-      const auto [u, v] = g.edges[size_t(e)];
+  // Each node's lightest edge as its weight, which holds the edge's place: a minimum
+  // found without fetching the weight of the edge to beat.
+  std::vector<Weight> lightest(size_t(n), ~Weight(0));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, edges.size(), 1 << 16), [&](const auto& range) {
+    for (int32_t i = range.begin(); i < range.end(); ++i) {
+      const auto [u, v] = edges.ends(i);
       if (u == v) continue;
-      const uint64_t w = weight(e);
+      const Weight w = edges.weight(i);
       for (const int32_t x : {u, v}) {
-        std::atomic_ref<int32_t> lightest(label[size_t(x)]);
-        for (int32_t now = lightest.load(std::memory_order_relaxed); now < 0 || w < weight(now);)
-          if (lightest.compare_exchange_weak(now, e, std::memory_order_relaxed)) break;
+        std::atomic_ref<Weight> least(lightest[size_t(x)]);
+        for (Weight now = least.load(std::memory_order_relaxed); w < now;)
+          if (least.compare_exchange_weak(now, w, std::memory_order_relaxed)) break;
       }
     }
   });
   const auto other_end = [&](int32_t x) {
-    const int32_t e = label[size_t(x)];
-    return e < 0 ? x : g.edges[size_t(e)][0] == x ? g.edges[size_t(e)][1] : g.edges[size_t(e)][0];
+    if (lightest[size_t(x)] == ~Weight(0)) return x;
+    const auto [u, v] = edges.ends(place_of(lightest[size_t(x)]));
+    return u == x ? v : u;
   };
   std::vector<int32_t> parent(static_cast<size_t>(n));
   tbb::parallel_for(nodes, [&](const auto& range) {
@@ -101,8 +157,18 @@ int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>
       parent[size_t(x)] = y != x && other_end(y) == x && x < y ? x : y;
     }
   });
-  for (int32_t x = 0; x < n; ++x)
-    if (parent[size_t(x)] != x) forest.push_back(label[size_t(x)]);
+  const auto added = chunk_offsets(n, [&](int32_t begin, int32_t end) {
+    int32_t count = 0;
+    for (int32_t x = begin; x < end; ++x) count += parent[size_t(x)] != x;
+    return count;
+  });
+  const size_t before = forest.size();
+  forest.resize(before + size_t(added.back()));
+  for_chunks(n, [&](int32_t c, int32_t begin, int32_t end) {
+    for (int32_t x = begin, next = added[size_t(c)]; x < end; ++x)
+      if (parent[size_t(x)] != x) forest[before + size_t(next++)] = edges.id(place_of(lightest[size_t(x)]));
+  });
+  std::vector<Weight>().swap(lightest);
   // Each node to its root, halving the path as it goes (another thread only ever sees a
   // parent move up towards the same root). Along a path the lightest edges' weights
   // fall, so with random weights paths are short.
@@ -118,17 +184,16 @@ int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>
       up(x).store(p, std::memory_order_relaxed);
     }
   });
-  // The roots numbered in node order: counted by fixed chunks, then numbered in each.
-  constexpr int32_t chunks = 64;
-  const int32_t chunk = (n + chunks - 1) / chunks;
-  std::array<int32_t, chunks + 1> first_tree{};
-  tbb::parallel_for(0, chunks, [&](int32_t c) {
-    for (int32_t x = c * chunk; x < std::min(n, (c + 1) * chunk); ++x) first_tree[size_t(c) + 1] += parent[size_t(x)] == x;
+  // The roots numbered in node order, then every node labelled by its root.
+  const auto first_tree = chunk_offsets(n, [&](int32_t begin, int32_t end) {
+    int32_t roots = 0;
+    for (int32_t x = begin; x < end; ++x) roots += parent[size_t(x)] == x;
+    return roots;
   });
-  for (int32_t c = 0; c < chunks; ++c) first_tree[size_t(c) + 1] += first_tree[size_t(c)];
-  tbb::parallel_for(0, chunks, [&](int32_t c) {
+  label.resize(size_t(n));
+  for_chunks(n, [&](int32_t c, int32_t begin, int32_t end) {
     int32_t tree = first_tree[size_t(c)];
-    for (int32_t x = c * chunk; x < std::min(n, (c + 1) * chunk); ++x)
+    for (int32_t x = begin; x < end; ++x)
       if (parent[size_t(x)] == x) label[size_t(x)] = tree++;
   });
   tbb::parallel_for(nodes, [&](const auto& range) {
@@ -138,17 +203,40 @@ int32_t boruvka_round(const Graph& g, const Weight& weight, std::vector<int32_t>
   return first_tree.back();
 }
 
-// Kruskal over the edges in the order of random keys, or with `ranked` by increasing
-// Graph::rank and by random key within a rank: the minimum spanning forest of those
-// weights (ties by edge id), so every seed's tree is that of a random permutation.
-// On a large graph a Borůvka round comes first: each node takes its lightest edge, which
-// is always in the minimum forest, in one pass over the edges in their own order
-// (neighbouring faces have nearby ids, so this is nearly sequential). That contracts the
-// graph to about a third of its nodes, and Kruskal over the edges left then finds in a
-// union-find a third the size: on a 10M-face mesh 12 MB, which the cache holds, instead
-// of 40 MB, which it does not. Below Graph::contract_from nodes the union-find fits the
-// cache anyway and the round costs more than it saves. Either way the forest is the same.
-std::vector<int32_t> kruskal_random(const Graph& g, uint64_t seed, bool ranked) {
+// The edges that join two different trees of `label`, between those trees, in their
+// order.
+template <typename Edges>
+std::vector<TreeEdge> edges_between_trees(const Edges& edges, const std::vector<int32_t>& label) {
+  const auto joins = [&](int32_t i) {
+    const auto [u, v] = edges.ends(i);
+    return label[size_t(u)] != label[size_t(v)];
+  };
+  const auto at = chunk_offsets(edges.size(), [&](int32_t begin, int32_t end) {
+    int32_t count = 0;
+    for (int32_t i = begin; i < end; ++i) count += joins(i);
+    return count;
+  });
+  std::vector<TreeEdge> between(size_t(at.back()));
+  for_chunks(edges.size(), [&](int32_t c, int32_t begin, int32_t end) {
+    for (int32_t i = begin, next = at[size_t(c)]; i < end; ++i)
+      if (joins(i)) {
+        const auto [u, v] = edges.ends(i);
+        between[size_t(next++)] = {label[size_t(u)], label[size_t(v)], edges.id(i)};
+      }
+  });
+  return between;
+}
+
+// The minimum spanning forest under random keys, or with `ranked` by increasing
+// Graph::rank and by random key within a rank, ties by edge id: every seed's tree is that
+// of Kruskal over a random permutation. Found by Borůvka rounds, each of which adds every
+// tree's lightest edge (always in the minimum forest) and contracts the trees to nodes,
+// until no edge joins two trees: on a mesh about a quarter of the nodes are left after
+// each round, and half the edges. Every pass is parallel, and the first reads the edges
+// in their own order (neighbouring faces have nearby ids), where Kruskal would sort them
+// and then run a serial union-find over nodes in random order. With distinct weights the
+// minimum forest is unique, so it is Kruskal's.
+std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked) {
   const size_t m = g.edges.size();
   ranked = ranked && !g.rank.empty();
   if (ranked && g.rank.size() != m)
@@ -164,87 +252,18 @@ std::vector<int32_t> kruskal_random(const Graph& g, uint64_t seed, bool ranked) 
   const uint64_t salt = Random(seed).next();
   constexpr int rank_shift = 27;
   static_assert(Graph::max_rank <= (1 << (32 - rank_shift)));
-  std::vector<uint32_t> keys(m);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t e = r.begin(); e < r.end(); ++e) {
-      const uint32_t random = uint32_t(Random(salt ^ (uint64_t(e) * 0xd1b54a32d192ed03ULL)).next() >> 32);
-      keys[e] = ranked ? uint32_t(g.rank[e]) << rank_shift | random >> (32 - rank_shift) : random;
-    }
-  });
-  auto key = [&](int32_t e) { return keys[size_t(e)]; };
-  auto weight = [&](int32_t e) { return uint64_t(key(e)) << 32 | uint32_t(e); };
-
-  const int32_t n = g.num_nodes;
-  std::vector<int32_t> forest;
-  forest.reserve(size_t(n));
-  std::vector<int32_t> label(static_cast<size_t>(n));
-  int32_t contracted = n;
-  if (n < Graph::contract_from)
-    std::iota(label.begin(), label.end(), 0);
-  else
-    contracted = boruvka_round(g, weight, label, forest);
-
-  // The edges between contracted nodes in increasing weight: scattered by the top byte of
-  // their key into 256 buckets (a few sequential write streams), then each bucket, small
-  // enough for the cache, sorted by the other three bytes in stable radix passes. The
-  // edges enter in id order, so ties stay in id order, as in `weight`.
-  struct Edge {
-    int32_t u, v, id;
-    uint32_t key;
+  const auto key = [&](int32_t e) {
+    const uint32_t random = uint32_t(Random(salt ^ (uint64_t(e) * 0xd1b54a32d192ed03ULL)).next() >> 32);
+    return ranked ? uint32_t(g.rank[size_t(e)]) << rank_shift | random >> (32 - rank_shift) : random;
   };
-  constexpr int buckets = 256;
-  // In parallel over fixed runs of edge ids, each run writing after the runs before it in
-  // every bucket: the same order whatever the number of threads.
-  constexpr size_t runs = 16;
-  const size_t run_length = (m + runs - 1) / runs;
-  std::vector<std::array<size_t, buckets>> at(runs);
-  auto for_runs = [&](auto&& body) {
-    tbb::parallel_for(size_t(0), runs, [&](size_t r) {
-      for (size_t e = r * run_length; e < std::min(m, (r + 1) * run_length); ++e) {
-        const int32_t u = label[size_t(g.edges[e][0])], v = label[size_t(g.edges[e][1])];
-        if (u != v) body(at[r], int32_t(e), u, v);
-      }
-    });
-  };
-  for_runs([&](std::array<size_t, buckets>& count, int32_t e, int32_t, int32_t) { ++count[key(e) >> 24]; });
-  std::vector<size_t> start(buckets + 1, 0);
-  for (int b = 0; b < buckets; ++b) {
-    start[size_t(b) + 1] = start[size_t(b)];
-    for (auto& count : at) start[size_t(b) + 1] += std::exchange(count[size_t(b)], start[size_t(b) + 1]);
-  }
-  std::vector<Edge> order(start.back());
-  for_runs([&](std::array<size_t, buckets>& fill, int32_t e, int32_t u, int32_t v) {
-    const uint32_t k = key(e);
-    order[fill[k >> 24]++] = {u, v, e, k};
-  });
-  std::vector<int32_t>().swap(label);
-  std::vector<uint32_t>().swap(keys);
-  tbb::parallel_for(tbb::blocked_range<int>(0, buckets), [&](const tbb::blocked_range<int>& range) {
-    std::vector<Edge> spare;
-    for (int b = range.begin(); b < range.end(); ++b) {
-      const std::span<Edge> edges(order.data() + start[size_t(b)], start[size_t(b) + 1] - start[size_t(b)]);
-      spare.resize(edges.size());
-      std::span<Edge> from = edges, to(spare);
-      for (int shift = 0; shift < 24; shift += 8) {
-        std::array<size_t, 257> place{};
-        for (const Edge& x : from) ++place[((x.key >> shift) & 0xff) + 1];
-        for (int d = 0; d < 256; ++d) place[size_t(d) + 1] += place[size_t(d)];
-        for (const Edge& x : from) to[place[(x.key >> shift) & 0xff]++] = x;
-        std::swap(from, to);
-      }
-      // Three passes leave the sorted edges in the spare buffer.
-      std::copy(from.begin(), from.end(), edges.begin());
-    }
-  });
-
-  UnionFind sets(contracted);
-  constexpr size_t ahead = 8;
-  for (size_t i = 0; i < order.size(); ++i) {
-    if (i + ahead < order.size()) {
-      sets.prefetch(order[i + ahead].u);
-      sets.prefetch(order[i + ahead].v);
-    }
-    if (sets.unite(order[i].u, order[i].v)) forest.push_back(order[i].id);
+  std::vector<int32_t> forest, label;
+  forest.reserve(size_t(g.num_nodes));
+  const GraphEdges<decltype(key)> edges{g, key};
+  int32_t trees = boruvka_round(g.num_nodes, edges, label, forest);
+  for (std::vector<TreeEdge> left = edges_between_trees(edges, label); !left.empty();) {
+    const TreeEdges<decltype(key)> between{left, key};
+    trees = boruvka_round(trees, between, label, forest);
+    left = edges_between_trees(between, label);
   }
   return forest;
 }
@@ -358,8 +377,8 @@ std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, 
   Random rng(seed);
   std::vector<int32_t> forest;
   switch (strategy) {
-  case TreeStrategy::random: forest = kruskal_random(graph, seed, false); break;
-  case TreeStrategy::shaped: forest = kruskal_random(graph, seed, true); break;
+  case TreeStrategy::random: forest = minimum_forest(graph, seed, false); break;
+  case TreeStrategy::shaped: forest = minimum_forest(graph, seed, true); break;
   case TreeStrategy::uniform: forest = wilson(graph, rng); break;
   case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
   case TreeStrategy::dfs: forest = depth_first(graph, rng); break;

@@ -134,11 +134,11 @@ TEST(SpanningTree, ShapedTreeIsAMinimumSpanningForestByRank) {
   EXPECT_THROW(spanning_forest(g, TreeStrategy::shaped, 1), UsageError);
 }
 
-// The random tree is the minimum spanning tree of independent random weights, built from
-// a Borůvka round and Kruskal on what it leaves: on a cycle that tree leaves out the
-// heaviest edge, each edge equally often. A round that favoured low ids, or keys that
-// depended on the order of the passes, would skew the counts. 6000 seeds: each count is
-// 1000 on average with a standard deviation of 29, so the bounds are 5 deviations wide.
+// The random tree is the minimum spanning tree of independent random weights, found by
+// Borůvka rounds: on a cycle that tree leaves out the heaviest edge, each edge equally
+// often. A round that favoured low ids, or keys that depended on the order of the passes,
+// would skew the counts. 6000 seeds: each count is 1000 on average with a standard
+// deviation of 29, so the bounds are 5 deviations wide.
 TEST(SpanningTree, RandomTreeOnACycleLeavesOutEachEdgeEquallyOften) {
   Graph g;
   g.num_nodes = 6;
@@ -160,13 +160,13 @@ TEST(SpanningTree, RandomTreeOnACycleLeavesOutEachEdgeEquallyOften) {
   }
 }
 
-// From Graph::contract_from nodes on, the random and shaped forests start with a Borůvka
-// round. Disjoint 6-cycles make a graph that large in which every cycle repeats the test
-// above: the random forest leaves out each of a cycle's edges equally often (about 58,000
-// times each, standard deviation 220), and the shaped one an edge of the cycle's highest
-// rank, as a minimum spanning forest must.
-TEST(SpanningTree, BoruvkaRoundKeepsTheForestOfARandomOrder) {
-  const int32_t cycles = Graph::contract_from / 6 + 1;
+// A large graph takes the rounds in parallel over many threads' worth of nodes. Disjoint
+// 6-cycles make one in which every cycle repeats the test above: the random forest leaves
+// out each of a cycle's edges equally often (about 58,000 times each, standard deviation
+// 220), and the shaped one an edge of the cycle's highest rank, as a minimum spanning
+// forest must.
+TEST(SpanningTree, BoruvkaRoundsKeepTheForestOfARandomOrder) {
+  const int32_t cycles = (1 << 21) / 6 + 1;
   Graph g;
   g.num_nodes = 6 * cycles;
   for (int32_t c = 0; c < cycles; ++c)
@@ -193,6 +193,51 @@ TEST(SpanningTree, BoruvkaRoundKeepsTheForestOfARandomOrder) {
     uint8_t highest = 0;
     for (int i = 0; i < 6; ++i) highest = std::max(highest, g.rank[6 * size_t(c) + size_t(i)]);
     ASSERT_EQ(g.rank[6 * size_t(c) + size_t(shaped[size_t(c)])], highest) << "cycle " << c;
+  }
+}
+
+// Borůvka's later rounds run on the edges left between trees: many of them join the
+// same two trees, and each round must keep only ones that join different trees. On a
+// random multigraph with repeated edges and self loops (several components, many rounds)
+// the shaped forest must still weigh what Kruskal's by rank weighs, for every seed.
+TEST(SpanningTree, ShapedTreeIsMinimalOnAMultigraph) {
+  Graph g;
+  g.num_nodes = 3000;
+  uint64_t state = 12345;
+  const auto next = [&](int32_t below) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return int32_t((state >> 33) % uint64_t(below));
+  };
+  for (int e = 0; e < 9000; ++e) {
+    const int32_t u = next(2900), v = next(8) == 0 ? u : next(2900); // nodes 2900.. stay alone
+    g.edges.push_back({u, v});
+    if (next(4) == 0) g.edges.push_back({v, u});
+  }
+  for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t(next(Graph::max_rank)));
+  std::vector<int32_t> order(g.edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.rank[size_t(a)] < g.rank[size_t(b)]; });
+  std::vector<int32_t> label(size_t(g.num_nodes));
+  std::iota(label.begin(), label.end(), 0);
+  auto root = [&](int32_t x) {
+    while (label[size_t(x)] != x) x = label[size_t(x)];
+    return x;
+  };
+  int reference = 0, joined = 0;
+  for (int32_t e : order)
+    if (const int32_t a = root(g.edges[size_t(e)][0]), b = root(g.edges[size_t(e)][1]); a != b) {
+      label[size_t(a)] = b;
+      reference += g.rank[size_t(e)];
+      ++joined;
+    }
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const std::vector<int32_t> forest = spanning_forest(g, TreeStrategy::shaped, seed);
+    expect_spanning_forest(g, forest, g.num_nodes - joined);
+    int weight = 0;
+    for (int32_t e : forest) weight += g.rank[size_t(e)];
+    EXPECT_EQ(weight, reference);
+    expect_spanning_forest(g, spanning_forest(g, TreeStrategy::random, seed), g.num_nodes - joined);
   }
 }
 

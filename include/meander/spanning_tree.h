@@ -28,10 +28,6 @@ std::string_view to_string(TreeStrategy strategy);
 // for the shaped strategy; the others ignore it.
 struct Graph {
   static constexpr int max_rank = 32;
-  // From this many nodes on, the random and shaped forests start with a Borůvka round,
-  // which gives the same forest faster when the union-find outgrows the cache (measured
-  // on the sphere: 2M nodes break even, the 10M sphere's forest takes a quarter less).
-  static constexpr int32_t contract_from = 1 << 21;
   int32_t num_nodes = 0;
   std::vector<std::array<int32_t, 2>> edges;
   std::vector<uint8_t> rank;
