@@ -10,6 +10,9 @@
 #include <map>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace meander {
 
 namespace {
@@ -135,21 +138,37 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
 
   // With every quad split along its initial diagonal the triangles form disjoint loops
   // (each triangle has two quad sides, each side two triangles): the nodes of the graph.
+  // Graph edge e is quad edge_quad[e], or quad e itself when edge_quad is empty: when
+  // every quad joins two loops, as on a closed mesh, which spares an array as long as the
+  // graph's edges.
   Graph graph;
   std::vector<int32_t> edge_quad;
-  // At most one graph edge per quad: reserving spares the copies of a growing array.
-  graph.edges.reserve(size_t(nq));
-  edge_quad.reserve(size_t(nq));
-  auto join = [&](int32_t q, int32_t a, int32_t b) {
-    if (a == b) return;
-    graph.edges.push_back({a, b});
-    edge_quad.push_back(q);
+  const auto quad_of = [&](int32_t e) { return edge_quad.empty() ? e : edge_quad[size_t(e)]; };
+  const auto add_edges = [&](auto&& ends) { // ends(q): the loops that quad q joins, or equal ones
+    bool every_quad = true;
+    for (int32_t q = 0; q < nq && every_quad; ++q) every_quad = !m.is_half(q) && ends(q)[0] != ends(q)[1];
+    if (every_quad) {
+      graph.edges.resize(size_t(nq));
+      tbb::parallel_for(tbb::blocked_range<int32_t>(0, nq, 1 << 16), [&](const tbb::blocked_range<int32_t>& r) {
+        for (int32_t q = r.begin(); q < r.end(); ++q) graph.edges[size_t(q)] = ends(q);
+      });
+      return;
+    }
+    // At most one graph edge per quad: reserving spares the copies of a growing array.
+    graph.edges.reserve(size_t(nq));
+    edge_quad.reserve(size_t(nq));
+    for (int32_t q = 0; q < nq; ++q)
+      if (const auto e = ends(q); !m.is_half(q) && e[0] != e[1]) {
+        graph.edges.push_back(e);
+        edge_quad.push_back(q);
+      }
   };
   if (m.face_point_offset >= 0 && !initial) {
     // Dual of Simplest: the loops are the faces, named by the face points.
     graph.num_nodes = int32_t(m.positions.size()) - m.face_point_offset;
-    for (int32_t q = 0; q < nq; ++q)
-      if (!m.is_half(q)) join(q, m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset);
+    add_edges([&](int32_t q) {
+      return std::array<int32_t, 2>{m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset};
+    });
   } else {
     std::vector<int32_t> loop(2 * size_t(nq), -1);
     for (int32_t q = 0; q < nq; ++q)
@@ -158,20 +177,21 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
           walk_loop(m, diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = graph.num_nodes; });
           ++graph.num_nodes;
         }
-    for (int32_t q = 0; q < nq; ++q)
-      if (!m.is_half(q)) join(q, loop[size_t(2 * q)], loop[size_t(2 * q + 1)]);
+    add_edges([&](int32_t q) { return std::array<int32_t, 2>{loop[size_t(2 * q)], loop[size_t(2 * q + 1)]}; });
   }
   // The shaped tree flips first the quads whose flip shapes their triangles better: the
   // variable wire's slabs fold where the cycle crosses a sliver (docs/wires.md).
   if (options.tree == TreeStrategy::shaped) {
-    graph.rank.resize(edge_quad.size());
-    for (size_t e = 0; e < edge_quad.size(); ++e)
-      graph.rank[e] = flip_rank(m, edge_quad[e], diagonal[size_t(edge_quad[e])], options.seed);
+    graph.rank.resize(graph.edges.size());
+    for (size_t e = 0; e < graph.edges.size(); ++e) {
+      const int32_t q = quad_of(int32_t(e));
+      graph.rank[e] = flip_rank(m, q, diagonal[size_t(q)], options.seed);
+    }
   }
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) diagonal[size_t(edge_quad[size_t(e)])] ^= 1;
+  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) diagonal[size_t(quad_of(e))] ^= 1;
   graph = Graph();
   std::vector<int32_t>().swap(edge_quad);
   return loops_of(m, std::move(diagonal), observer);
