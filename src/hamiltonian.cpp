@@ -191,8 +191,7 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  for (int32_t e : spanning_forest(graph, options.tree, options.seed)) diagonal[size_t(quad_of(e))] ^= 1;
-  graph = Graph();
+  for (int32_t e : spanning_forest(std::move(graph), options.tree, options.seed)) diagonal[size_t(quad_of(e))] ^= 1;
   std::vector<int32_t>().swap(edge_quad);
   return loops_of(m, std::move(diagonal), observer);
 }

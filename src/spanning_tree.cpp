@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -235,8 +236,9 @@ std::vector<TreeEdge> edges_between_trees(const Edges& edges, const std::vector<
 // each round, and half the edges. Every pass is parallel, and the first reads the edges
 // in their own order (neighbouring faces have nearby ids), where Kruskal would sort them
 // and then run a serial union-find over nodes in random order. With distinct weights the
-// minimum forest is unique, so it is Kruskal's.
-std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked) {
+// minimum forest is unique, so it is Kruskal's. `edges_read()` is called once g.edges
+// are no longer read: after the first round.
+std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked, const std::function<void()>& edges_read) {
   const size_t m = g.edges.size();
   ranked = ranked && !g.rank.empty();
   if (ranked && g.rank.size() != m)
@@ -260,7 +262,9 @@ std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked) 
   forest.reserve(size_t(g.num_nodes));
   const GraphEdges<decltype(key)> edges{g, key};
   int32_t trees = boruvka_round(g.num_nodes, edges, label, forest);
-  for (std::vector<TreeEdge> left = edges_between_trees(edges, label); !left.empty();) {
+  std::vector<TreeEdge> left = edges_between_trees(edges, label);
+  edges_read();
+  while (!left.empty()) {
     const TreeEdges<decltype(key)> between{left, key};
     trees = boruvka_round(trees, between, label, forest);
     left = edges_between_trees(between, label);
@@ -371,24 +375,38 @@ std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   return forest;
 }
 
-} // namespace
-
-std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {
+// spanning_forest, calling `edges_read()` once graph.edges are no longer read.
+std::vector<int32_t> forest_of(const Graph& graph, TreeStrategy strategy, uint64_t seed,
+                               const std::function<void()>& edges_read) {
+  const size_t m = graph.edges.size();
   Random rng(seed);
   std::vector<int32_t> forest;
   switch (strategy) {
-  case TreeStrategy::random: forest = minimum_forest(graph, seed, false); break;
-  case TreeStrategy::shaped: forest = minimum_forest(graph, seed, true); break;
+  case TreeStrategy::random: forest = minimum_forest(graph, seed, false, edges_read); break;
+  case TreeStrategy::shaped: forest = minimum_forest(graph, seed, true, edges_read); break;
   case TreeStrategy::uniform: forest = wilson(graph, rng); break;
   case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
   case TreeStrategy::dfs: forest = depth_first(graph, rng); break;
   }
   // Increasing order through a mark per edge: linear, unlike sorting.
-  std::vector<uint8_t> in_forest(graph.edges.size(), 0);
+  std::vector<uint8_t> in_forest(m, 0);
   for (int32_t e : forest) in_forest[size_t(e)] = 1;
   forest.clear();
   for (size_t e = 0; e < in_forest.size(); ++e)
     if (in_forest[e]) forest.push_back(int32_t(e));
+  return forest;
+}
+
+} // namespace
+
+std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {
+  return forest_of(graph, strategy, seed, [] {});
+}
+
+std::vector<int32_t> spanning_forest(Graph&& graph, TreeStrategy strategy, uint64_t seed) {
+  std::vector<int32_t> forest =
+      forest_of(graph, strategy, seed, [&] { std::vector<std::array<int32_t, 2>>().swap(graph.edges); });
+  graph = Graph();
   return forest;
 }
 

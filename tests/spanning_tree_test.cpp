@@ -98,6 +98,17 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
   EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
 }
 
+// Handing the graph over gives the same forest and leaves the graph empty.
+TEST(SpanningTree, ConsumingOverloadMatchesAndReleases) {
+  const Graph g = grid_and_triangle(30, 20);
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped}) {
+    SCOPED_TRACE(std::string(to_string(s)));
+    Graph copy = g;
+    EXPECT_EQ(spanning_forest(std::move(copy), s, 5), spanning_forest(g, s, 5));
+    EXPECT_TRUE(copy.edges.empty()); // NOLINT(bugprone-use-after-move): checking the release
+  }
+}
+
 // Kruskal by rank gives a minimum spanning forest for the ranks as weights; within a rank
 // the order is random, so seeds still differ.
 TEST(SpanningTree, ShapedTreeIsAMinimumSpanningForestByRank) {

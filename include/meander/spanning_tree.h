@@ -39,4 +39,8 @@ struct Graph {
 // hitting time (near-linear on meshes).
 std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed);
 
+// The same, taking the graph over (left empty): the random and shaped forests release its
+// edges after their first pass, when the graph is the largest thing they hold.
+std::vector<int32_t> spanning_forest(Graph&& graph, TreeStrategy strategy, uint64_t seed);
+
 } // namespace meander
