@@ -6,11 +6,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <numeric>
 #include <span>
 #include <utility>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace meander {
 
@@ -182,33 +186,52 @@ struct EdgeScan {
 
 EdgeScan scan_edges(const PolygonMesh& m, const Connectivity& c) {
   EdgeScan s{.fans = UnionFind(m.num_corners())};
+  // In parallel over fixed chunks of edges, each counting for itself; the duplicates are
+  // listed per chunk and then taken in edge order, as one pass would take them.
+  constexpr int32_t chunks = 64;
+  const int32_t ne = c.num_edges(), chunk = (ne + chunks - 1) / chunks;
+  struct Counts {
+    int32_t boundary = 0, non_manifold = 0, first_non_manifold = -1, misoriented = 0;
+    std::vector<std::pair<int32_t, int32_t>> duplicates; // (face, the face it repeats)
+  };
+  std::array<Counts, chunks> counts;
+  tbb::parallel_for(0, chunks, [&](int32_t k) {
+    Counts& n = counts[size_t(k)];
+    for (int32_t e = k * chunk; e < std::min(ne, (k + 1) * chunk); ++e) {
+      const int32_t degree = c.edge_degree(e);
+      if (degree != 2) {
+        n.boundary += degree == 1;
+        if (degree > 2 && n.non_manifold++ == 0) n.first_non_manifold = e;
+        continue;
+      }
+      const int32_t h1 = c.edge_halfedges[size_t(c.edge_start[size_t(e)])];
+      const int32_t h2 = c.edge_halfedges[size_t(c.edge_start[size_t(e)]) + 1];
+      const int32_t n1 = next_halfedge(m, c, h1), n2 = next_halfedge(m, c, h2);
+      if (m.face_vertices[size_t(h1)] == m.face_vertices[size_t(h2)]) { // both leave the same vertex
+        ++n.misoriented;
+        s.fans.unite_concurrently(h1, h2);
+        s.fans.unite_concurrently(n1, n2);
+      } else {
+        s.fans.unite_concurrently(h1, n2);
+        s.fans.unite_concurrently(n1, h2);
+      }
+      // Faces that repeat each other share every edge, so where they share a manifold edge
+      // no third face can repeat them.
+      const int32_t f1 = c.halfedge_face[size_t(h1)], f2 = c.halfedge_face[size_t(h2)];
+      if (same_cycle(m.face(f1), m.face(f2))) n.duplicates.emplace_back(f2, f1);
+    }
+  });
   std::vector<int32_t> duplicate_of; // per face; allocated at the first duplicate
   const auto found = [&](int32_t f, int32_t earlier) {
     if (duplicate_of.empty()) duplicate_of.assign(size_t(m.num_faces()), -1);
     duplicate_of[size_t(f)] = earlier;
   };
-  for (int32_t e = 0; e < c.num_edges(); ++e) {
-    const int32_t degree = c.edge_degree(e);
-    if (degree != 2) {
-      s.boundary += degree == 1;
-      if (degree > 2 && s.non_manifold++ == 0) s.first_non_manifold = e;
-      continue;
-    }
-    const int32_t h1 = c.edge_halfedges[size_t(c.edge_start[size_t(e)])];
-    const int32_t h2 = c.edge_halfedges[size_t(c.edge_start[size_t(e)]) + 1];
-    const int32_t n1 = next_halfedge(m, c, h1), n2 = next_halfedge(m, c, h2);
-    if (m.face_vertices[size_t(h1)] == m.face_vertices[size_t(h2)]) { // both leave the same vertex
-      ++s.misoriented;
-      s.fans.unite(h1, h2);
-      s.fans.unite(n1, n2);
-    } else {
-      s.fans.unite(h1, n2);
-      s.fans.unite(n1, h2);
-    }
-    // Faces that repeat each other share every edge, so where they share a manifold edge
-    // no third face can repeat them.
-    const int32_t f1 = c.halfedge_face[size_t(h1)], f2 = c.halfedge_face[size_t(h2)];
-    if (same_cycle(m.face(f1), m.face(f2))) found(f2, f1);
+  for (const Counts& n : counts) {
+    s.boundary += n.boundary;
+    s.misoriented += n.misoriented;
+    if (n.non_manifold > 0 && s.non_manifold == 0) s.first_non_manifold = n.first_non_manifold;
+    s.non_manifold += n.non_manifold;
+    for (const auto& [f, earlier] : n.duplicates) found(f, earlier);
   }
   // Faces with only non-manifold edges: compare with the faces before them on their least
   // shared edge (listed in increasing order, so the first match is the first face).
@@ -362,24 +385,46 @@ struct FaceScan {
 };
 
 FaceScan scan_faces(const PolygonMesh& m, const std::string& prefix) {
-  const int32_t nv = m.num_vertices();
+  const int32_t nv = m.num_vertices(), nf = m.num_faces();
   FaceScan s;
   s.used.assign(size_t(nv), 0);
-  RepeatFinder repeats(nv);
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    const std::span<const int32_t> face = m.face(f);
-    for (const int32_t v : face) {
-      if (!in_range(v, nv))
-        throw TopologyError(prefix + "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
-                            " but the mesh has " + plural(nv, "vertex", "vertices"));
-      s.used[size_t(v)] = 1;
-    }
-    if (s.first_degenerate < 0) {
-      const int32_t repeated = repeats(face);
-      if (repeated >= 0 || face.size() < 3) {
-        s.first_degenerate = f;
-        s.repeated = repeated;
+  // In parallel over fixed chunks of faces, each finding its own first bad face; the
+  // first chunk's that has one is the first face.
+  constexpr int32_t chunks = 64;
+  const int32_t chunk = (nf + chunks - 1) / chunks;
+  struct First {
+    int32_t out_of_range = -1, degenerate = -1, repeated = -1;
+  };
+  std::array<First, chunks> first;
+  tbb::enumerable_thread_specific<RepeatFinder> finders([nv] { return RepeatFinder(nv); });
+  tbb::parallel_for(0, chunks, [&](int32_t k) {
+    First& found = first[size_t(k)];
+    RepeatFinder& repeats = finders.local();
+    for (int32_t f = k * chunk; f < std::min(nf, (k + 1) * chunk); ++f) {
+      const std::span<const int32_t> face = m.face(f);
+      if (!all_in_range(face, nv)) {
+        found.out_of_range = f;
+        return;
       }
+      for (const int32_t v : face) std::atomic_ref<uint8_t>(s.used[size_t(v)]).store(1, std::memory_order_relaxed);
+      if (found.degenerate < 0) {
+        const int32_t repeated = repeats(face);
+        if (repeated >= 0 || face.size() < 3) {
+          found.degenerate = f;
+          found.repeated = repeated;
+        }
+      }
+    }
+  });
+  for (const First& found : first) {
+    if (const int32_t f = found.out_of_range; f >= 0) {
+      const int32_t v = *std::find_if(m.face(f).begin(), m.face(f).end(), [&](int32_t u) { return !in_range(u, nv); });
+      throw TopologyError(prefix + "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                          " but the mesh has " + plural(nv, "vertex", "vertices"));
+    }
+    if (found.degenerate >= 0 && s.first_degenerate < 0) {
+      s.first_degenerate = found.degenerate;
+      s.repeated = found.repeated;
     }
   }
   for (int32_t v = 0; v < nv; ++v)

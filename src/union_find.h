@@ -2,6 +2,7 @@
 // operations costs near-linear time. Internal to the library.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -33,6 +34,21 @@ public:
     return true;
   }
 
+  // unite() for many threads at once: the root of larger index is linked under the
+  // other by a compare-and-swap, so every parent has a smaller index than its child (no
+  // cycle can form) and no lock is needed. Such sets keep no size, which only keeps
+  // unite()'s trees low; after the threads join, every other member works as usual.
+  bool unite_concurrently(int32_t a, int32_t b) {
+    for (;;) {
+      a = find_concurrently(a);
+      b = find_concurrently(b);
+      if (a == b) return false;
+      if (a < b) std::swap(a, b);
+      int32_t root = entry(a).load(std::memory_order_relaxed);
+      if (root < 0 && entry(a).compare_exchange_strong(root, b, std::memory_order_relaxed)) return true;
+    }
+  }
+
   // Asks the cache for x's entry ahead of a find, for callers that know their next
   // elements while the current one is still waiting on memory.
   void prefetch(int32_t x) const { __builtin_prefetch(parent_.data() + x); }
@@ -41,6 +57,20 @@ public:
   bool is_root(int32_t x) const { return parent_[size_t(x)] < 0; }
 
 private:
+  std::atomic_ref<int32_t> entry(int32_t x) { return std::atomic_ref<int32_t>(parent_[size_t(x)]); }
+
+  // find() with path halving where other threads may be linking: a parent only ever
+  // moves up towards its root, so a halving that reads a stale grandparent is harmless.
+  int32_t find_concurrently(int32_t x) {
+    for (int32_t p; (p = entry(x).load(std::memory_order_relaxed)) >= 0;) {
+      const int32_t grandparent = entry(p).load(std::memory_order_relaxed);
+      if (grandparent < 0) return p;
+      entry(x).store(grandparent, std::memory_order_relaxed);
+      x = grandparent;
+    }
+    return x;
+  }
+
   // One array, so a find touches half the memory of separate parent and size arrays:
   // parent_[x] is x's parent, or minus the size of x's set when x is a root.
   std::vector<int32_t> parent_;

@@ -480,6 +480,34 @@ TEST(CheckRepair, ClosedAndOpenFanAtOneVertexAreSplit) {
   }
 }
 
+// Fans are joined on all threads at once. 20000 copies of the mesh above (a closed and an
+// open fan at one vertex), faces interleaved so that every copy spans many threads' share
+// of the edges, with duplicates of a few faces: every copy's vertex must be split once
+// and every duplicate found, whatever the threads did.
+TEST(CheckRepair, FansAndDuplicatesAreFoundAcrossThreads) {
+  PolygonMesh one = tetrahedron();
+  const int32_t apex = one.num_vertices();
+  for (const Vec3 p : {Vec3{-1, 0, 0}, Vec3{-1, -1, 0}, Vec3{0, -1, -0.5f}, Vec3{0.5f, -1, -1}}) one.positions.push_back(p);
+  for (int32_t k = 0; k < 3; ++k) one.add_face(std::array<int32_t, 3>{0, apex + k, apex + k + 1});
+  constexpr int32_t copies = 20000;
+  PolygonMesh m;
+  for (int32_t c = 0; c < copies; ++c)
+    for (const Vec3 p : one.positions) m.positions.push_back(p + Vec3{float(c % 200) * 3, float(c / 200) * 3, 0});
+  for (int32_t f = 0; f < one.num_faces(); ++f)
+    for (int32_t c = 0; c < copies; ++c) {
+      std::vector<int32_t> face(one.face(f).begin(), one.face(f).end());
+      for (int32_t& v : face) v += c * one.num_vertices();
+      m.add_face(face);
+    }
+  for (int32_t c = 0; c < copies; c += 1000) m.add_face(m.face(c)); // a duplicate of copy c's first face
+  const RepairResult r = repair(m, "x.obj");
+  EXPECT_EQ(r.repairs, (std::vector<std::string>{
+                           "dropped 20 duplicate faces (face 140000 duplicates face 0)",
+                           "split 20000 non-manifold vertices into 40000 copies (vertex 0 had 2 fans)"}));
+  expect_repaired(r.mesh);
+  EXPECT_EQ(inspect(r.mesh).components.size(), 2u * copies);
+}
+
 TEST(CheckRepair, ThreeTrianglesOnOneEdgeAreCutApart) {
   const PolygonMesh m = three_triangles_on_one_edge();
   EXPECT_EQ(strict_error(m), "x.obj: edge (0,1) is shared by 3 faces: mesh is not manifold");
