@@ -50,6 +50,34 @@ void expect_spanning_forest(const Graph& g, const std::vector<int32_t>& forest, 
   EXPECT_TRUE(std::is_sorted(forest.begin(), forest.end()));
 }
 
+// The reference minimum spanning forest by rank: Kruskal over the edges sorted by rank,
+// ties by id, in a union-find without balancing (tiny graphs).
+std::vector<int32_t> kruskal_by_rank(const Graph& g) {
+  std::vector<int32_t> order(g.edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.rank[size_t(a)] < g.rank[size_t(b)]; });
+  std::vector<int32_t> label(size_t(g.num_nodes));
+  std::iota(label.begin(), label.end(), 0);
+  auto root = [&](int32_t x) {
+    while (label[size_t(x)] != x) x = label[size_t(x)];
+    return x;
+  };
+  std::vector<int32_t> forest;
+  for (int32_t e : order)
+    if (const int32_t a = root(g.edges[size_t(e)][0]), b = root(g.edges[size_t(e)][1]); a != b) {
+      label[size_t(a)] = b;
+      forest.push_back(e);
+    }
+  return forest;
+}
+
+// The sum of the ranks of a forest's edges.
+int rank_weight(const Graph& g, const std::vector<int32_t>& forest) {
+  int total = 0;
+  for (int32_t e : forest) total += g.rank[size_t(e)];
+  return total;
+}
+
 TEST(SpanningTree, EveryStrategySpansEveryComponent) {
   const Graph g = grid_and_triangle(12, 9);
   for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped})
@@ -114,27 +142,8 @@ TEST(SpanningTree, ConsumingOverloadMatchesAndReleases) {
 TEST(SpanningTree, ShapedTreeIsAMinimumSpanningForestByRank) {
   Graph g = grid_and_triangle(20, 15);
   for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t((e * 7919) % 5));
-  auto weight = [&](const std::vector<int32_t>& forest) {
-    int total = 0;
-    for (int32_t e : forest) total += g.rank[size_t(e)];
-    return total;
-  };
-  // The reference: Kruskal over the edges sorted by rank, ties by id.
-  std::vector<int32_t> order(g.edges.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.rank[size_t(a)] < g.rank[size_t(b)]; });
-  std::vector<int32_t> label(size_t(g.num_nodes));
-  std::iota(label.begin(), label.end(), 0);
-  auto root = [&](int32_t x) {
-    while (label[size_t(x)] != x) x = label[size_t(x)];
-    return x;
-  };
-  std::vector<int32_t> reference;
-  for (int32_t e : order)
-    if (const int32_t a = root(g.edges[size_t(e)][0]), b = root(g.edges[size_t(e)][1]); a != b) {
-      label[size_t(a)] = b;
-      reference.push_back(e);
-    }
+  auto weight = [&](const std::vector<int32_t>& forest) { return rank_weight(g, forest); };
+  const std::vector<int32_t> reference = kruskal_by_rank(g);
   const std::vector<int32_t> one = spanning_forest(g, TreeStrategy::shaped, 1), two = spanning_forest(g, TreeStrategy::shaped, 2);
   expect_spanning_forest(g, one, 2);
   EXPECT_EQ(weight(one), weight(reference));
@@ -225,29 +234,13 @@ TEST(SpanningTree, ShapedTreeIsMinimalOnAMultigraph) {
     if (next(4) == 0) g.edges.push_back({v, u});
   }
   for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t(next(Graph::max_rank)));
-  std::vector<int32_t> order(g.edges.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.rank[size_t(a)] < g.rank[size_t(b)]; });
-  std::vector<int32_t> label(size_t(g.num_nodes));
-  std::iota(label.begin(), label.end(), 0);
-  auto root = [&](int32_t x) {
-    while (label[size_t(x)] != x) x = label[size_t(x)];
-    return x;
-  };
-  int reference = 0, joined = 0;
-  for (int32_t e : order)
-    if (const int32_t a = root(g.edges[size_t(e)][0]), b = root(g.edges[size_t(e)][1]); a != b) {
-      label[size_t(a)] = b;
-      reference += g.rank[size_t(e)];
-      ++joined;
-    }
+  const std::vector<int32_t> reference = kruskal_by_rank(g);
+  const int32_t joined = int32_t(reference.size());
   for (uint64_t seed = 1; seed <= 20; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const std::vector<int32_t> forest = spanning_forest(g, TreeStrategy::shaped, seed);
     expect_spanning_forest(g, forest, g.num_nodes - joined);
-    int weight = 0;
-    for (int32_t e : forest) weight += g.rank[size_t(e)];
-    EXPECT_EQ(weight, reference);
+    EXPECT_EQ(rank_weight(g, forest), rank_weight(g, reference));
     expect_spanning_forest(g, spanning_forest(g, TreeStrategy::random, seed), g.num_nodes - joined);
   }
 }
