@@ -110,7 +110,7 @@ std::array<int32_t, kChunks + 1> chunk_offsets(int32_t count, Count&& counted) {
   const int32_t chunk = (count + kChunks - 1) / kChunks;
   std::array<int32_t, kChunks + 1> at{};
   tbb::parallel_for(0, kChunks, [&](int32_t c) {
-    at[size_t(c) + 1] = counted(c * chunk, std::min(count, (c + 1) * chunk));
+    at[size_t(c) + 1] = counted(std::min(count, c * chunk), std::min(count, (c + 1) * chunk));
   });
   for (int32_t c = 0; c < kChunks; ++c) at[size_t(c) + 1] += at[size_t(c)];
   return at;
@@ -119,7 +119,7 @@ std::array<int32_t, kChunks + 1> chunk_offsets(int32_t count, Count&& counted) {
 template <typename Body>
 void for_chunks(int32_t count, Body&& body) {
   const int32_t chunk = (count + kChunks - 1) / kChunks;
-  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, c * chunk, std::min(count, (c + 1) * chunk)); });
+  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, std::min(count, c * chunk), std::min(count, (c + 1) * chunk)); });
 }
 
 // One Borůvka round over n nodes: adds each node's lightest edge to `forest`, and labels
@@ -388,12 +388,20 @@ std::vector<int32_t> forest_of(const Graph& graph, TreeStrategy strategy, uint64
   case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
   case TreeStrategy::dfs: forest = depth_first(graph, rng); break;
   }
-  // Increasing order through a mark per edge: linear, unlike sorting.
+  // Increasing order through a mark per edge: linear, unlike sorting, and parallel (each
+  // edge is marked once).
   std::vector<uint8_t> in_forest(m, 0);
-  for (int32_t e : forest) in_forest[size_t(e)] = 1;
-  forest.clear();
-  for (size_t e = 0; e < in_forest.size(); ++e)
-    if (in_forest[e]) forest.push_back(int32_t(e));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) in_forest[size_t(forest[i])] = 1;
+  });
+  const auto at = chunk_offsets(int32_t(m), [&](int32_t begin, int32_t end) {
+    return int32_t(std::count(in_forest.begin() + begin, in_forest.begin() + end, 1));
+  });
+  forest.resize(size_t(at.back()));
+  for_chunks(int32_t(m), [&](int32_t c, int32_t begin, int32_t end) {
+    for (int32_t e = begin, next = at[size_t(c)]; e < end; ++e)
+      if (in_forest[size_t(e)]) forest[size_t(next++)] = e;
+  });
   return forest;
 }
 
