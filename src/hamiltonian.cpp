@@ -100,7 +100,6 @@ TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal, const W
   const int32_t nq = m.num_quads();
   TriangleCycle result;
   result.diagonal = std::move(diagonal);
-  std::vector<uint8_t> visited(2 * size_t(nq), 0);
   // Never more than two triangles a quad: the order's memory never moves, as observers need.
   result.order.reserve(2 * size_t(nq));
   int64_t report_at = observer ? observer->every : std::numeric_limits<int64_t>::max();
@@ -108,17 +107,25 @@ TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal, const W
     observer->seen(result.order, result.cycle_start);
     report_at = int64_t(result.order.size()) + observer->every;
   };
-  for (int32_t q = 0; q < nq; ++q) {
-    const uint8_t d = result.diagonal[size_t(q)];
-    for (int a = m.is_half(q) ? 3 : 1 - d; a <= 3; a += 2) {
-      if (visited[size_t(slot(q, a))]) continue;
-      walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) {
-        visited[size_t(slot(tq, ta))] = 1;
-        result.order.push_back(4 * tq + ta);
-        if (int64_t(result.order.size()) >= report_at) report();
-      });
-      result.cycle_start.push_back(int32_t(result.order.size()));
-    }
+  const auto first_apex = [&](int32_t q) { return m.is_half(q) ? 3 : 1 - result.diagonal[size_t(q)]; };
+  const auto walk = [&](int32_t q, int a, auto&& also) {
+    walk_loop(m, result.diagonal, q, a, [&](int32_t tq, int ta) {
+      also(tq, ta);
+      result.order.push_back(4 * tq + ta);
+      if (int64_t(result.order.size()) >= report_at) report();
+    });
+    result.cycle_start.push_back(int32_t(result.order.size()));
+  };
+  // The first loop is walked without marking its triangles: on a closed mesh of one
+  // component, the usual case, it holds all of them, and the marks would cost the walk a
+  // store into a second array at every step. Otherwise they are marked afterwards.
+  if (nq > 0) walk(0, first_apex(0), [](int32_t, int) {});
+  if (result.order.size() < 2 * size_t(nq)) {
+    std::vector<uint8_t> visited(2 * size_t(nq), 0);
+    for (const int32_t t : result.order) visited[size_t(slot(t >> 2, t & 3))] = 1;
+    for (int32_t q = 0; q < nq; ++q)
+      for (int a = first_apex(q); a <= 3; a += 2)
+        if (!visited[size_t(slot(q, a))]) walk(q, a, [&](int32_t tq, int ta) { visited[size_t(slot(tq, ta))] = 1; });
   }
   if (observer) report();
   return result;
@@ -191,7 +198,10 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  for (int32_t e : spanning_forest(std::move(graph), options.tree, options.seed)) diagonal[size_t(quad_of(e))] ^= 1;
+  const std::vector<int32_t> forest = spanning_forest(std::move(graph), options.tree, options.seed);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) diagonal[size_t(quad_of(forest[i]))] ^= 1; // each quad once
+  });
   std::vector<int32_t>().swap(edge_quad);
   return loops_of(m, std::move(diagonal), observer);
 }
