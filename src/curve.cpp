@@ -167,11 +167,23 @@ Polylines sample_closed(const std::vector<int32_t>& start, const CurveOptions& o
   return out;
 }
 
-// Control point i of the cycles, counted over all cycles in order.
+// Control point i of the cycles, counted over all cycles in order. The samplers ask for
+// them in order, and each waits on a quad and then on three positions at random: so
+// each asks the cache ahead for the quad of a point further on and the positions of one
+// nearer, whose quad was asked for earlier.
+// Only the order given is read: a writer beside the walk gives the part walked so far.
 struct CycleControl {
+  static constexpr int32_t quad_ahead = 16, positions_ahead = 8;
   const QuadMesh* quads;
-  const TriangleCycle* cycle;
-  Vec3 operator()(int32_t i) const { return triangle_control_point(*quads, cycle->order[size_t(i)]); }
+  std::span<const int32_t> order;
+  Vec3 operator()(int32_t i) const {
+    if (size_t(i) + quad_ahead < order.size()) {
+      __builtin_prefetch(&quads->quads[size_t(order[size_t(i) + quad_ahead] >> 2)]);
+      for (const int32_t v : cycle_triangle(*quads, order[size_t(i) + positions_ahead]))
+        __builtin_prefetch(&quads->positions[size_t(v)]);
+    }
+    return triangle_control_point(*quads, order[size_t(i)]);
+  }
 };
 
 } // namespace
@@ -181,7 +193,7 @@ Polylines smooth_curves(const Polylines& control, const CurveOptions& options) {
 }
 
 Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options) {
-  return sample_closed(cycle.cycle_start, options, CycleControl{&quads, &cycle});
+  return sample_closed(cycle.cycle_start, options, CycleControl{&quads, cycle.order});
 }
 
 namespace {
@@ -190,7 +202,7 @@ namespace {
 io::PolylineStream cycle_stream(const QuadMesh& quads, const TriangleCycle& cycle, int k, Smoothing smoothing) {
   io::PolylineStream out;
   out.start = sampled_start(cycle.cycle_start, k);
-  out.points = [control = CycleControl{&quads, &cycle}, start = std::span<const int32_t>(cycle.cycle_start), k,
+  out.points = [control = CycleControl{&quads, cycle.order}, start = std::span<const int32_t>(cycle.cycle_start), k,
                 smoothing](int64_t begin, int64_t end, Vec3* dst) {
     sample_curves(control, start, k, smoothing, begin, end, dst);
   };
@@ -247,8 +259,7 @@ void CycleCurveWriter::File::write_segments(std::span<const int32_t> order, std:
                                             int64_t end) {
   io::PolylineStream part;
   part.points = [&](int64_t from, int64_t to, Vec3* dst) {
-    sample_curves([&](int32_t i) { return triangle_control_point(quads, order[size_t(i)]); }, bounds, k,
-                  options.smoothing, from, to, dst);
+    sample_curves(CycleControl{&quads, order}, bounds, k, options.smoothing, from, to, dst);
   };
   // The walk has the other core.
   tbb::task_arena(1).execute([&] { io::write_ply_points(part, *ply, points_at, begin * k, end * k); });
