@@ -49,10 +49,6 @@ public:
     }
   }
 
-  // Asks the cache for x's entry ahead of a find, for callers that know their next
-  // elements while the current one is still waiting on memory.
-  void prefetch(int32_t x) const { __builtin_prefetch(parent_.data() + x); }
-
   // x stands for its set (find(x) == x), without the cost of a find.
   bool is_root(int32_t x) const { return parent_[size_t(x)] < 0; }
 
@@ -72,7 +68,8 @@ private:
   }
 
   // One array, so a find touches half the memory of separate parent and size arrays:
-  // parent_[x] is x's parent, or minus the size of x's set when x is a root.
+  // parent_[x] is x's parent, or minus the size of x's set when x is a root (some
+  // negative number after unite_concurrently).
   std::vector<int32_t> parent_;
 };
 
