@@ -2,6 +2,7 @@
 
 #include "meander/connectivity.h"
 #include "meander/error.h"
+#include "chunks.h"
 #include "union_find.h"
 
 #include <algorithm>
@@ -14,7 +15,6 @@
 #include <utility>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 namespace meander {
 
@@ -188,16 +188,14 @@ EdgeScan scan_edges(const PolygonMesh& m, const Connectivity& c) {
   EdgeScan s{.fans = UnionFind(m.num_corners())};
   // In parallel over fixed chunks of edges, each counting for itself; the duplicates are
   // listed per chunk and then taken in edge order, as one pass would take them.
-  constexpr int32_t chunks = 64;
-  const int32_t ne = c.num_edges(), chunk = (ne + chunks - 1) / chunks;
   struct Counts {
     int32_t boundary = 0, non_manifold = 0, first_non_manifold = -1, misoriented = 0;
     std::vector<std::pair<int32_t, int32_t>> duplicates; // (face, the face it repeats)
   };
-  std::array<Counts, chunks> counts;
-  tbb::parallel_for(0, chunks, [&](int32_t k) {
+  std::array<Counts, kChunks> counts;
+  for_chunks(c.num_edges(), [&](int32_t k, int32_t begin, int32_t end) {
     Counts& n = counts[size_t(k)];
-    for (int32_t e = k * chunk; e < std::min(ne, (k + 1) * chunk); ++e) {
+    for (int32_t e = begin; e < end; ++e) {
       const int32_t degree = c.edge_degree(e);
       if (degree != 2) {
         n.boundary += degree == 1;
@@ -390,17 +388,15 @@ FaceScan scan_faces(const PolygonMesh& m, const std::string& prefix) {
   s.used.assign(size_t(nv), 0);
   // In parallel over fixed chunks of faces, each finding its own first bad face; the
   // first chunk's that has one is the first face.
-  constexpr int32_t chunks = 64;
-  const int32_t chunk = (nf + chunks - 1) / chunks;
   struct First {
     int32_t out_of_range = -1, degenerate = -1, repeated = -1;
   };
-  std::array<First, chunks> first;
+  std::array<First, kChunks> first;
   tbb::enumerable_thread_specific<RepeatFinder> finders([nv] { return RepeatFinder(nv); });
-  tbb::parallel_for(0, chunks, [&](int32_t k) {
+  for_chunks(nf, [&](int32_t k, int32_t begin, int32_t end) {
     First& found = first[size_t(k)];
     RepeatFinder& repeats = finders.local();
-    for (int32_t f = k * chunk; f < std::min(nf, (k + 1) * chunk); ++f) {
+    for (int32_t f = begin; f < end; ++f) {
       const std::span<const int32_t> face = m.face(f);
       if (!all_in_range(face, nv)) {
         found.out_of_range = f;

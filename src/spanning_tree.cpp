@@ -1,6 +1,7 @@
 #include "meander/spanning_tree.h"
 
 #include "meander/error.h"
+#include "chunks.h"
 #include "random.h"
 #include "union_find.h"
 
@@ -100,27 +101,6 @@ struct TreeEdges {
   int32_t id(int32_t i) const { return edges[size_t(i)].id; }
   Weight weight(int32_t i) const { return weigh(key(id(i)), i); }
 };
-
-// Runs body(chunk, begin, end) over `count` items cut into a fixed number of chunks, in
-// parallel, and returns each chunk's start in an output body() fills with the number of
-// items it returns per chunk: the same order whatever the number of threads.
-constexpr int32_t kChunks = 64;
-template <typename Count>
-std::array<int32_t, kChunks + 1> chunk_offsets(int32_t count, Count&& counted) {
-  const int32_t chunk = (count + kChunks - 1) / kChunks;
-  std::array<int32_t, kChunks + 1> at{};
-  tbb::parallel_for(0, kChunks, [&](int32_t c) {
-    at[size_t(c) + 1] = counted(std::min(count, c * chunk), std::min(count, (c + 1) * chunk));
-  });
-  for (int32_t c = 0; c < kChunks; ++c) at[size_t(c) + 1] += at[size_t(c)];
-  return at;
-}
-
-template <typename Body>
-void for_chunks(int32_t count, Body&& body) {
-  const int32_t chunk = (count + kChunks - 1) / kChunks;
-  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, std::min(count, c * chunk), std::min(count, (c + 1) * chunk)); });
-}
 
 // One Borůvka round over n nodes: adds each node's lightest edge to `forest`, and labels
 // the nodes 0, 1, ... by the trees those edges make, in the order of their smallest
