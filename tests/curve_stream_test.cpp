@@ -170,6 +170,37 @@ TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
   }
 }
 
+// A curve file of more than 250 MB is written behind (src/io/atomic_file.h): its early
+// bytes leave the page cache while later ones are written, and the writer then seeks back
+// into them to close each of the two curves. Read back, it is still the curve in memory.
+TEST(CurveStream, FileWrittenBehindReadsBackAsTheCurve) {
+  PolygonMesh mesh = sphere(12000);
+  const PolygonMesh t = torus(12000);
+  const int32_t offset = mesh.num_vertices();
+  for (const Vec3& p : t.positions) mesh.positions.push_back(p + Vec3{5, 0, 0});
+  for (int32_t f = 0; f < t.num_faces(); ++f) {
+    std::vector<int32_t> face(t.face(f).begin(), t.face(f).end());
+    for (int32_t& v : face) v += offset;
+    mesh.add_face(face);
+  }
+  const CurveResult made = make_curve(mesh, {.cycle = {.seed = 2}, .sample = false});
+  const int64_t triangles = made.cycle.num_triangles();
+  const CurveOptions options{Smoothing::bspline, int(14'000'000 / triangles + 1)};
+  const auto out = output_dir() / "behind.ply";
+  {
+    CycleCurveWriter writer(made.quads, options, out);
+    writer.observer()->seen(made.cycle.order, made.cycle.cycle_start);
+    ASSERT_EQ(writer.finish(made.cycle), triangles * options.samples);
+  }
+  ASSERT_GT(std::filesystem::file_size(out), uintmax_t(250) << 20);
+  const Polylines expected = cycle_curves(made.quads, made.cycle, options), read = read_polylines(out);
+  ASSERT_EQ(read.size(), 2);
+  EXPECT_TRUE(read.closed(0) && read.closed(1));
+  EXPECT_EQ(read.start, expected.start);
+  EXPECT_TRUE(read.points == expected.points);
+  std::filesystem::remove(out);
+}
+
 TEST(CurveStream, RefusesBadSamplesBeforeAnyFile) {
   const CurveResult made = make_curve(sphere(200), {});
   const auto out = output_dir() / "curve.ply";

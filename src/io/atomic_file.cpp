@@ -15,6 +15,8 @@ namespace meander::io {
 namespace {
 
 constexpr size_t buffer_size = size_t(1) << 20;
+constexpr uint64_t write_behind_step = uint64_t(16) << 20;
+constexpr size_t write_behind_steps_cached = 8;
 
 // mkstemp makes a file only its owner may read; the target should get what any new
 // file gets, 0666 minus the umask. Reading the umask means setting it (a race with
@@ -98,7 +100,29 @@ void AtomicFile::reserve(uint64_t end) {
   reserved_ = to;
 }
 
+void AtomicFile::write_behind(uint64_t begin, uint64_t end) {
+  if (!writing_behind_) return;
+  if (begin != unsent_end_) unsent_begin_ = begin; // after a seek: an earlier run too short to send stays cached
+  unsent_end_ = end;
+  if (unsent_end_ - unsent_begin_ < write_behind_step) return;
+  // Starts the writes without waiting for them; may wait while the disk's queue is full.
+  if (::sync_file_range(fd_, off_t(unsent_begin_), off_t(unsent_end_ - unsent_begin_), SYNC_FILE_RANGE_WRITE) != 0) {
+    if (errno == EIO || errno == ENOSPC) fail("cannot write", errno);
+    writing_behind_ = false; // not supported here: the page cache keeps everything
+    return;
+  }
+  sent_.emplace_back(unsent_begin_, unsent_end_);
+  unsent_begin_ = unsent_end_;
+  if (sent_.size() > write_behind_steps_cached) {
+    // Drops the pages written out; those still dirty or being written stay.
+    const auto [from, to] = sent_.front();
+    sent_.pop_front();
+    ::posix_fadvise(fd_, off_t(from), off_t(to - from), POSIX_FADV_DONTNEED);
+  }
+}
+
 void AtomicFile::write_all(const char* data, size_t size) {
+  const uint64_t begin = offset_;
   reserve(offset_ + size);
   while (size > 0) {
     const ssize_t written = ::write(fd_, data, size);
@@ -111,6 +135,7 @@ void AtomicFile::write_all(const char* data, size_t size) {
     offset_ += uint64_t(written);
   }
   written_ = std::max(written_, offset_);
+  write_behind(begin, offset_);
 }
 
 uint64_t AtomicFile::position() {

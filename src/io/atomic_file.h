@@ -10,11 +10,22 @@
 // allocates them, which made writing a 2.2 GiB curve here take 1.5-4.9 s against
 // 0.4-0.5 s preallocated (docs/benchmarks.md). Where the file system cannot reserve
 // (or is full), the writes go on without.
+//
+// A large file is also written behind: every 16 MiB of consecutive bytes are sent to the
+// disk at once, and once 128 MiB more have followed they are dropped from the page cache,
+// as far as they have reached the disk by then (what has not stays cached, as any
+// write's bytes would). This is what Linux 6.14's RWF_DONTCACHE does, by hand so that any
+// kernel has it. A curve of 2.4 GB otherwise takes 2.4 GB of page cache that the kernel
+// must find free pages for: on this VM, whose host takes back the memory the guest frees,
+// such pages cost 2.5-3.5 s/GiB, and the write took 5.7-10 s against 1.2-1.7 s written
+// behind (docs/benchmarks.md). The page cache of the written bytes is then reused over
+// and over.
 #pragma once
 
 #include "io/binary.h"
 
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -72,6 +83,9 @@ private:
   void write_all(const char* data, size_t size);
   // Reserves the file's blocks up to at least `end` while the file system can.
   void reserve(uint64_t end);
+  // Sends bytes [begin, end), just written, to the disk and drops earlier ones from the
+  // page cache, as the header says.
+  void write_behind(uint64_t begin, uint64_t end);
   [[noreturn]] void fail(std::string_view what, int error) const;
 
   std::filesystem::path target_;
@@ -84,6 +98,11 @@ private:
   uint64_t written_ = 0;  // the end of the furthest byte written: the file's size
   uint64_t reserved_ = 0; // the file's size as fallocate left it
   bool reserving_ = true;
+  // Consecutive bytes written but not yet sent to the disk, and the ranges sent whose
+  // pages are still cached.
+  uint64_t unsent_begin_ = 0, unsent_end_ = 0;
+  std::deque<std::pair<uint64_t, uint64_t>> sent_;
+  bool writing_behind_ = true;
 };
 
 } // namespace meander::io
