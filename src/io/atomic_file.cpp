@@ -71,9 +71,11 @@ void AtomicFile::integer(int64_t value) {
 
 void AtomicFile::bytes(const void* data, size_t size) {
   if (size == 0) return; // data may be null then, which memcpy does not allow
-  if (buffer_.size() - used_ < size) {
+  // A block as large as a quarter of the buffer is written as it is: copying it first
+  // would cost a pass over it (2.4 GB for a 10M-triangle curve).
+  if (buffer_.size() - used_ < size || size >= buffer_.size() / 4) {
     flush();
-    if (size >= buffer_.size()) {
+    if (size >= buffer_.size() / 4) {
       write_all(static_cast<const char*>(data), size);
       return;
     }

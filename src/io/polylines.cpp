@@ -176,15 +176,20 @@ void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_
   // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
   // all cores and written in order.
   io::write_blocks(out, end - begin, block_points, [&, first = begin](int64_t from, int64_t to, std::vector<char>& bytes) {
-    std::vector<Vec3> points(size_t(to - from));
-    curves.points(first + from, first + to, points.data());
-    bytes.resize(points.size() * 12);
-    char* at = bytes.data();
-    for (const Vec3& p : points) {
-      io::store_little_endian(at, p.x);
-      io::store_little_endian(at + 4, p.y);
-      io::store_little_endian(at + 8, p.z);
-      at += 12;
+    bytes.resize(size_t(to - from) * 12);
+    if constexpr (host_is_little_endian && sizeof(Vec3) == 12) {
+      // A point's three floats are its record: sampled straight into the block.
+      curves.points(first + from, first + to, reinterpret_cast<Vec3*>(bytes.data()));
+    } else {
+      std::vector<Vec3> points(size_t(to - from));
+      curves.points(first + from, first + to, points.data());
+      char* at = bytes.data();
+      for (const Vec3& p : points) {
+        io::store_little_endian(at, p.x);
+        io::store_little_endian(at + 4, p.y);
+        io::store_little_endian(at + 8, p.z);
+        at += 12;
+      }
     }
   });
 }
