@@ -156,13 +156,21 @@ void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t
     char* at = bytes.data();
     // Edge i of polyline k joins points first + i and first + i + 1, the last of a closed
     // one back to its first.
+    // A run of a polyline's edges is a loop the compiler vectorises (120M edges for a
+    // 10M-triangle curve).
     size_t k = size_t(std::upper_bound(edge_start.begin(), edge_start.end(), begin) - edge_start.begin()) - 1;
-    for (int64_t e = begin; e < end; ++e, at += 8) {
+    for (int64_t e = begin; e < end;) {
       while (e >= edge_start[k + 1]) ++k;
       const int32_t first = curves.start[k], last = curves.start[k + 1] - 1;
-      const int32_t i = first + int32_t(e - edge_start[k]);
-      io::store_little_endian(at, i);
-      io::store_little_endian(at + 4, i == last ? first : i + 1);
+      const int32_t from = first + int32_t(e - edge_start[k]);
+      const int32_t count = int32_t(std::min(end, edge_start[k + 1]) - e);
+      for (int32_t j = 0; j < count; ++j) {
+        io::store_little_endian(at + 8 * size_t(j), from + j);
+        io::store_little_endian(at + 8 * size_t(j) + 4, from + j + 1);
+      }
+      at += 8 * size_t(count);
+      e += count;
+      if (from + count - 1 == last) io::store_little_endian(at - 4, first); // a closed one's last edge
     }
   });
 }
