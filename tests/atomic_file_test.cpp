@@ -5,6 +5,8 @@
 // for the output.
 #include "test_support.h"
 
+#include "meander/io.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -67,6 +69,32 @@ TEST(AtomicFile, KilledMidWriteLeavesThePreviousFileWhole) {
   ASSERT_FALSE(previous.empty());
   ASSERT_TRUE(kill_while_writing(target));
   EXPECT_EQ(test::read_file(target), previous);
+}
+
+// A large target is swapped with the new file and the previous one removed by a detached
+// process (src/io/atomic_file.cpp): the target is the new file as soon as the writer
+// returns, and the previous one is soon gone, leaving nothing beside it.
+TEST(AtomicFile, LargeTargetIsReplacedAndThePreviousFileRemoved) {
+  const fs::path dir = test::output_dir() / "replaced";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path target = dir / "curve.ply";
+  for (const float x : {1.0f, 2.0f}) {
+    Polylines curve;
+    curve.points.assign(4'000'000, Vec3{x, 0, 0}); // 80 MB as a PLY: more than the 64 MiB swapped
+    curve.start = {0, int32_t(curve.points.size())};
+    write_polylines(curve, target);
+    const Polylines read = read_polylines(target);
+    ASSERT_EQ(read.points.size(), curve.points.size());
+    EXPECT_EQ(read.points.front().x, x);
+  }
+  size_t files = 0;
+  for (int wait = 0; wait < 100; ++wait) {
+    files = size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+    if (files == 1) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(files, 1u);
 }
 
 } // namespace

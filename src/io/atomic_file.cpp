@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace meander::io {
@@ -30,6 +31,33 @@ mode_t new_file_mode() {
     std::fclose(status);
   }
   return mode_t(0666 & ~mask);
+}
+
+// Replacing a file frees its blocks before rename() returns, and on a file system that
+// discards freed blocks (this VM's ext4, mounted with `discard`) that waits about 0.14 s
+// a GB: 0.3 s for the 10M-triangle curve written over the previous run's. So a large
+// target is swapped with the temporary file in one atomic step, and a detached process
+// removes the previous file, now under the temporary name, while the program goes on.
+// False (nothing done) where the target is small or absent, or the swap is refused.
+bool replace_in_background(const std::string& temp, const std::filesystem::path& target) {
+  constexpr off_t large = off_t(64) << 20;
+  struct stat info {};
+  if (::stat(target.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink != 1 || info.st_size < large)
+    return false;
+  if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) return false;
+  // A grandchild, so that no zombie is left to a long-running parent: the child exits at
+  // once and init reaps the grandchild. Both call only what is safe after fork() in a
+  // threaded program.
+  const pid_t child = ::fork();
+  if (child == 0) {
+    if (::fork() == 0) ::unlink(temp.c_str());
+    ::_exit(0);
+  }
+  if (child < 0)
+    ::unlink(temp.c_str());
+  else
+    ::waitpid(child, nullptr, 0);
+  return true;
 }
 
 } // namespace
@@ -162,7 +190,8 @@ void AtomicFile::close() {
 
 void AtomicFile::commit() {
   close();
-  if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot write", errno);
+  if (!replace_in_background(temp_, target_) && std::rename(temp_.c_str(), target_.c_str()) != 0)
+    fail("cannot write", errno);
   committed_ = true;
 }
 
