@@ -42,7 +42,7 @@ mode_t new_file_mode() {
 bool replace_in_background(const std::string& temp, const std::filesystem::path& target) {
   constexpr off_t large = off_t(64) << 20;
   struct stat info {};
-  if (::stat(target.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink != 1 || info.st_size < large)
+  if (::lstat(target.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink != 1 || info.st_size < large)
     return false;
   if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) return false;
   // A grandchild, so that no zombie is left to a long-running parent: the child exits at
