@@ -327,6 +327,34 @@ TEST(IoRead, UnreadableFileIsAnIOError) {
   EXPECT_EQ(test::message_of<IOError>([&] { read_mesh(path); }), path.string() + ": cannot open: Permission denied");
 }
 
+// A file of 32 MiB or more is paged in by a second thread while the parser reads it
+// (src/io/mapped_file.cpp): the mesh must be the one the same bytes give from memory.
+TEST(IoRead, LargeFileReadsAsItsBytes) {
+  const fs::path path = output_dir() / "large.obj";
+  write_mesh(sphere(1000000), path);
+  ASSERT_GE(fs::file_size(path), uintmax_t(32) << 20);
+  const PolygonMesh from_file = read_mesh(path);
+  const PolygonMesh from_memory = read_mesh(test::read_file(path), MeshFormat::obj, path.string());
+  EXPECT_EQ(from_file.positions, from_memory.positions);
+  EXPECT_EQ(from_file.face_vertices, from_memory.face_vertices);
+  EXPECT_EQ(from_file.face_start, from_memory.face_start);
+}
+
+// A refusal on the first line of a large file stops the thread that pages it in, and the
+// error is the one a small file gives.
+TEST(IoRead, LargeFileRefusedEarlyNamesTheLine) {
+  const fs::path path = output_dir() / "large_bad.obj";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "v 0 0 x\n";
+    const std::string comment = "# " + std::string(1 << 20, '#') + "\n";
+    for (int i = 0; i < 40; ++i) out << comment;
+  }
+  ASSERT_GE(fs::file_size(path), uintmax_t(32) << 20);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(path); }), path.string() + ":1: bad vertex coordinate 'x'");
+}
+
 TEST(IoRead, UnknownExtensionIsAUsageErrorNamingThePath) {
   const fs::path path = write_file("mesh.txt", "v 0 0 0\n");
   EXPECT_EQ(test::message_of<UsageError>([&] { read_mesh(path); }),

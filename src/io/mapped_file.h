@@ -1,8 +1,10 @@
 // A file's bytes mapped read-only: the parsers read them in place, with no copy.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <string_view>
+#include <thread>
 
 namespace meander::io {
 
@@ -20,6 +22,9 @@ public:
 private:
   const char* data_ = "";
   size_t size_ = 0;
+  // Brings a large file's pages in ahead of the parser, front to back (see the .cpp).
+  std::thread reader_;
+  std::atomic<bool> stop_reading_{false};
 };
 
 } // namespace meander::io
