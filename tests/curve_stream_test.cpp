@@ -19,9 +19,9 @@ namespace meander::test {
 namespace {
 
 // A sphere and a torus side by side: one mesh, two components, two curves.
-PolygonMesh sphere_and_torus() {
-  PolygonMesh m = sphere(300);
-  const PolygonMesh t = torus(400);
+PolygonMesh sphere_and_torus(int32_t sphere_faces = 300, int32_t torus_faces = 400) {
+  PolygonMesh m = sphere(sphere_faces);
+  const PolygonMesh t = torus(torus_faces);
   const int32_t offset = m.num_vertices();
   for (const Vec3& p : t.positions) m.positions.push_back(p + Vec3{5, 0, 0});
   for (int32_t f = 0; f < t.num_faces(); ++f) {
@@ -174,16 +174,7 @@ TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
 // bytes leave the page cache while later ones are written, and the writer then seeks back
 // into them to close each of the two curves. Read back, it is still the curve in memory.
 TEST(CurveStream, FileWrittenBehindReadsBackAsTheCurve) {
-  PolygonMesh mesh = sphere(12000);
-  const PolygonMesh t = torus(12000);
-  const int32_t offset = mesh.num_vertices();
-  for (const Vec3& p : t.positions) mesh.positions.push_back(p + Vec3{5, 0, 0});
-  for (int32_t f = 0; f < t.num_faces(); ++f) {
-    std::vector<int32_t> face(t.face(f).begin(), t.face(f).end());
-    for (int32_t& v : face) v += offset;
-    mesh.add_face(face);
-  }
-  const CurveResult made = make_curve(mesh, {.cycle = {.seed = 2}, .sample = false});
+  const CurveResult made = make_curve(sphere_and_torus(12000, 12000), {.cycle = {.seed = 2}, .sample = false});
   const int64_t triangles = made.cycle.num_triangles();
   const CurveOptions options{Smoothing::bspline, int(14'000'000 / triangles + 1)};
   const auto out = output_dir() / "behind.ply";
