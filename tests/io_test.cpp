@@ -340,8 +340,9 @@ TEST(IoRead, LargeFileReadsAsItsBytes) {
   EXPECT_EQ(from_file.face_start, from_memory.face_start);
 }
 
-// A refusal on the first line of a large file stops the thread that pages it in, and the
-// error is the one a small file gives.
+// A refusal on the first line of a large file comes while the second thread is still
+// paging it in: the file is closed without a crash (the thread stopped and joined), and
+// the error is the one a small file gives.
 TEST(IoRead, LargeFileRefusedEarlyNamesTheLine) {
   const fs::path path = output_dir() / "large_bad.obj";
   {

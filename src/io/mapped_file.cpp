@@ -2,10 +2,10 @@
 
 #include "meander/error.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
-#include <algorithm>
 #include <string>
 #include <system_error>
 #include <sys/mman.h>
