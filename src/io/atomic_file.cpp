@@ -121,13 +121,18 @@ void AtomicFile::reserve(uint64_t end) {
   if (!reserving_ || end <= reserved_) return;
   constexpr uint64_t first_step = uint64_t(1) << 20, largest_step = uint64_t(64) << 20;
   const uint64_t step = std::clamp(reserved_, first_step, largest_step);
-  const uint64_t to = std::max(end, reserved_ + step);
+  const uint64_t to = std::max(end, std::min(reserved_ + step, expected_));
   // Not supported, or no room for a whole step: write() says whether the bytes fit.
   if (::fallocate(fd_, 0, off_t(reserved_), off_t(to - reserved_)) != 0) {
     reserving_ = false;
     return;
   }
   reserved_ = to;
+}
+
+void AtomicFile::expect_size(uint64_t size) {
+  expected_ = size;
+  reserve(size);
 }
 
 void AtomicFile::write_behind(uint64_t begin, uint64_t end) {

@@ -144,6 +144,7 @@ uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
   out.integer(edge_start.back());
   out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
   const uint64_t points_at = out.position();
+  out.expect_size(points_at + 12 * uint64_t(curves.start.back()) + 8 * uint64_t(edge_start.back()));
   write_ply_edges(curves, out, points_at);
   return points_at;
 }
