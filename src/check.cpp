@@ -2,6 +2,7 @@
 
 #include "meander/connectivity.h"
 #include "meander/error.h"
+#include "meander/locality.h"
 #include "chunks.h"
 #include "union_find.h"
 
@@ -633,13 +634,12 @@ RepairResult repair(const PolygonMesh& mesh, std::string_view name, const Repair
   return repair(PolygonMesh(mesh), name, options);
 }
 
-RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
-  const std::string prefix = std::string(name) + ": ";
+namespace {
+
+// repair(), the mesh left in its order.
+RepairResult repair_in_order(PolygonMesh&& mesh, const std::string& prefix, const RepairOptions& options) {
   const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
-  if (options.max_faces > 0 && mesh.num_faces() > options.max_faces)
-    throw InputError(prefix + std::to_string(mesh.num_faces()) + " faces, more than the limit of " +
-                     std::to_string(options.max_faces));
-  RepairResult result{std::move(mesh), {}, {}, {}};
+  RepairResult result{.mesh = std::move(mesh)};
   PolygonMesh& m = result.mesh;
   std::vector<std::string>& repairs = result.repairs;
 
@@ -775,6 +775,28 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
   // describes the result, and the pipeline need not build it again.
   if (!reoriented) result.connectivity = std::move(c);
   return result;
+}
+
+} // namespace
+
+RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptions& options) {
+  const std::string prefix = std::string(name) + ": ";
+  if (options.max_faces > 0 && mesh.num_faces() > options.max_faces)
+    throw InputError(prefix + std::to_string(mesh.num_faces()) + " faces, more than the limit of " +
+                     std::to_string(options.max_faces));
+  if (options.reorder && is_scattered(mesh) && all_in_range(mesh.face_vertices, mesh.num_vertices())) {
+    // The input is kept until the reordered mesh proves to need nothing: otherwise it is
+    // repaired in its own order, so that every message names the input's elements.
+    try {
+      RepairResult result = repair_in_order(reordered(mesh, locality_order(mesh)), prefix, options);
+      if (result.repairs.empty() && result.notices.empty()) {
+        result.reordered = true;
+        return result;
+      }
+    } catch (const Error&) {
+    }
+  }
+  return repair_in_order(std::move(mesh), prefix, options);
 }
 
 } // namespace meander

@@ -44,6 +44,8 @@ CurveJob curve_job(const CurveFlags& flags) {
           .curve = {.smoothing = parse_smoothing(flags.smooth), .samples = flags.samples}};
 }
 
+bool reorders(const CurveJob& job) { return job.quadrangulation != Quadrangulation::none; }
+
 void StageLog::lap(std::string_view stage) {
   const auto now = std::chrono::steady_clock::now();
   add(stage, std::chrono::duration<double>(now - start_).count());
@@ -67,13 +69,14 @@ void require_memory(const std::string& input, double elements, double bytes_each
                    gib(memory) + ": " + advice(memory));
 }
 
-RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces) {
+RepairResult read_and_repair(const std::filesystem::path& path, StageLog& log, const RepairOptions& options) {
   PolygonMesh mesh = read_mesh(path);
   log.lap("read");
-  RepairResult repaired = repair(std::move(mesh), path.string(), {.strict = strict, .max_faces = max_faces});
+  RepairResult repaired = repair(std::move(mesh), path.string(), options);
   for (const std::string& line : repaired.repairs) std::fprintf(stderr, "%s: repaired: %s\n", path.string().c_str(), line.c_str());
   for (const std::string& line : repaired.notices) std::fprintf(stderr, "%s: note: %s\n", path.string().c_str(), line.c_str());
   log.lap("check");
+  if (repaired.reordered) log.note(path.string() + ": its vertices and faces lay scattered in memory; reordered them");
   return repaired;
 }
 

@@ -31,6 +31,9 @@ struct CurveFlags {
 };
 void add_curve_flags(CLI::App& app, CurveFlags& flags);
 CurveJob curve_job(const CurveFlags& flags);
+// Whether the input may be put in another order before `job` (RepairOptions::reorder):
+// not under --quad none, which refuses a face that is not a quad by its number.
+bool reorders(const CurveJob& job);
 
 // Refuses (UsageError, naming `input`), before it is made, a result of this many
 // elements at this many bytes each that would not fit in the machine's memory: the
@@ -41,9 +44,11 @@ void require_memory(const std::string& input, double elements, double bytes_each
                     const std::function<std::string()>& what, const std::function<std::string(double memory)>& advice);
 
 // Reads a mesh and repairs it (each repair reported on stderr as "NAME: repaired: ...",
-// each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check times to the log when verbose.
+// each notice as "NAME: note: ..."), or refuses it under strict. Adds the read and check
+// times to the log when verbose. `options.strict`, `max_faces` and `reorder` as in
+// RepairOptions.
 class StageLog;
-RepairResult read_and_repair(const std::filesystem::path& path, bool strict, StageLog& log, int64_t max_faces = 0);
+RepairResult read_and_repair(const std::filesystem::path& path, StageLog& log, const RepairOptions& options);
 
 // Runs work() on the mesh read from `input`. The library's topology refusals (a quad
 // mesh with boundary, a triangle under --quad none, ...) do not know the file; the

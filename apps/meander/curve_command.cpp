@@ -31,7 +31,7 @@ void run_curve(const CurveArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  RepairResult input = read_and_repair(a.input, a.strict, log, a.curve.max_faces);
+  RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.curve.max_faces, .reorder = reorders(job)});
   StageTimes times;
   const CurveResult result =
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });

@@ -54,7 +54,7 @@ void run_duotone(const DuotoneArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  const RepairResult input = read_and_repair(a.input, a.strict, log, a.max_faces);
+  const RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces});
   log.restart();
   const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());

@@ -85,6 +85,12 @@ struct RepairOptions {
   // Refuse (throw InputError) a mesh of more faces than this before any work, so that a
   // server bounds what one request may cost; 0: no limit.
   int64_t max_faces = 0;
+  // Let the result's vertices and faces come in another order when the mesh is large and
+  // scattered in memory (locality.h), since every later stage follows its adjacency:
+  // only if it needs no repair and gets no notice, so that messages always name the
+  // input's elements (a mesh that does is repaired in its own order). For callers whose
+  // output and messages never refer to the input's numbering.
+  bool reorder = false;
 };
 
 struct RepairResult {
@@ -96,6 +102,8 @@ struct RepairResult {
   // What is worth telling but needs no repair, e.g. "component 0 is not orientable
   // (Möbius-like); faces left as they are".
   std::vector<std::string> notices;
+  // Whether `mesh` is the input in the order RepairOptions::reorder allows.
+  bool reordered = false;
   // The edge connectivity of `mesh` when repair still holds a valid one (always, unless
   // it re-oriented faces), so the pipeline need not build it again; empty otherwise.
   Connectivity connectivity;

@@ -1,0 +1,201 @@
+// Meshes whose elements lie scattered in memory are put in a locality order before the
+// curve (locality.h, RepairOptions::reorder): the same surface, and the same messages
+// as the input's order would give.
+#include "test_support.h"
+
+#include "meander/check.h"
+#include "meander/error.h"
+#include "meander/hamiltonian.h"
+#include "meander/io.h"
+#include "meander/locality.h"
+#include "meander/quadrangulate.h"
+#include "meander/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+
+namespace meander {
+namespace {
+
+// `mesh` with its vertices and faces in a fixed pseudo-random order.
+PolygonMesh shuffled(const PolygonMesh& mesh) {
+  uint64_t state = 12345;
+  const auto below = [&](size_t n) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return size_t((state >> 33) % n);
+  };
+  const auto permutation = [&](int32_t n) {
+    std::vector<int32_t> p(static_cast<size_t>(n));
+    std::iota(p.begin(), p.end(), 0);
+    for (size_t i = p.size(); i > 1; --i) std::swap(p[i - 1], p[below(i)]);
+    return p;
+  };
+  const std::vector<int32_t> vertex_to = permutation(mesh.num_vertices()), face_from = permutation(mesh.num_faces());
+  PolygonMesh out;
+  out.positions.resize(mesh.positions.size());
+  for (int32_t v = 0; v < mesh.num_vertices(); ++v) out.positions[size_t(vertex_to[size_t(v)])] = mesh.positions[size_t(v)];
+  for (const int32_t f : face_from) {
+    std::vector<int32_t> face;
+    for (const int32_t v : mesh.face(f)) face.push_back(vertex_to[size_t(v)]);
+    out.add_face(face);
+  }
+  return out;
+}
+
+// A hash of each face's corner positions in order, sorted: what reordering must keep.
+std::vector<uint64_t> faces_by_position(const PolygonMesh& mesh) {
+  std::vector<uint64_t> faces(size_t(mesh.num_faces()));
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    uint64_t h = 1469598103934665603ULL;
+    for (const int32_t v : mesh.face(f))
+      for (const float x : {mesh.positions[size_t(v)].x, mesh.positions[size_t(v)].y, mesh.positions[size_t(v)].z})
+        h = (h ^ std::bit_cast<uint32_t>(x)) * 1099511628211ULL;
+    faces[size_t(f)] = h;
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+const PolygonMesh& large_sphere() {
+  static const PolygonMesh mesh = sphere(1'100'000); // above is_scattered's 2^20 faces
+  return mesh;
+}
+
+const PolygonMesh& large_shuffled_sphere() {
+  static const PolygonMesh mesh = shuffled(large_sphere());
+  return mesh;
+}
+
+TEST(Locality, ShuffledMeshIsScatteredAndGeneratedOnesAreNot) {
+  EXPECT_FALSE(is_scattered(large_sphere()));
+  EXPECT_FALSE(is_scattered(torus(1'100'000)));
+  // OpenSubdiv numbers the refined vertices in a few streams, each in order.
+  EXPECT_FALSE(is_scattered(genus_surface(2, 1'400'000)));
+  EXPECT_TRUE(is_scattered(large_shuffled_sphere()));
+  EXPECT_FALSE(is_scattered(shuffled(sphere(20000)))); // small: fits the caches anyway
+}
+
+TEST(Locality, ReorderedMeshIsTheSameSurfaceInOrder) {
+  const PolygonMesh& input = large_shuffled_sphere();
+  const MeshOrder order = locality_order(input);
+  const PolygonMesh local = reordered(input, order);
+  ASSERT_EQ(local.num_faces(), input.num_faces());
+  ASSERT_EQ(local.num_vertices(), input.num_vertices());
+  // Each face keeps its corners, first corner and orientation included.
+  for (int32_t f = 0; f < local.num_faces(); f += 997) {
+    const auto was = input.face(order.face_order[size_t(f)]), is = local.face(f);
+    ASSERT_EQ(was.size(), is.size());
+    for (size_t k = 0; k < is.size(); ++k) {
+      EXPECT_EQ(is[k], order.vertex_rank[size_t(was[k])]);
+      EXPECT_EQ(local.positions[size_t(is[k])], input.positions[size_t(was[k])]);
+    }
+  }
+  EXPECT_EQ(faces_by_position(local), faces_by_position(input));
+  EXPECT_FALSE(is_scattered(local));
+}
+
+TEST(Locality, MixedFaceSizesKeepTheirCorners) {
+  PolygonMesh mesh = genus_surface(2, 1'048'576); // quads, half of them split below: 2^20 faces and more
+  // Split every other quad into two triangles, so that sizes differ from face to face.
+  PolygonMesh mixed;
+  mixed.positions = mesh.positions;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto q = mesh.face(f);
+    if (f % 2) {
+      mixed.add_face(q);
+    } else {
+      mixed.add_face({q[0], q[1], q[2]});
+      mixed.add_face({q[0], q[2], q[3]});
+    }
+  }
+  const PolygonMesh input = shuffled(mixed);
+  ASSERT_TRUE(is_scattered(input));
+  const PolygonMesh local = reordered(input, locality_order(input));
+  EXPECT_EQ(faces_by_position(local), faces_by_position(input));
+}
+
+TEST(Locality, RepairReordersOnlyWhenAsked) {
+  const RepairResult as_given = repair(PolygonMesh(large_shuffled_sphere()), "s.ply");
+  EXPECT_FALSE(as_given.reordered);
+  EXPECT_EQ(as_given.mesh.face_vertices, large_shuffled_sphere().face_vertices);
+  const RepairResult local = repair(PolygonMesh(large_shuffled_sphere()), "s.ply", {.reorder = true});
+  EXPECT_TRUE(local.reordered);
+  EXPECT_TRUE(local.repairs.empty());
+  EXPECT_FALSE(is_scattered(local.mesh));
+  EXPECT_EQ(faces_by_position(local.mesh), faces_by_position(large_shuffled_sphere()));
+  // Its connectivity is that of the reordered mesh: the cycle covers it.
+  const QuadMesh quads = dual_simplest(local.mesh, local.connectivity);
+  const TriangleCycle cycle = hamiltonian_cycle(quads);
+  EXPECT_EQ(cycle.num_cycles(), 1);
+  EXPECT_EQ(verify_cycle(quads, cycle), "");
+}
+
+// A mesh that needs repair is repaired in its own order: the messages name the input's
+// faces and vertices, as without reordering.
+TEST(Locality, MeshThatNeedsRepairKeepsItsOrderAndMessages) {
+  PolygonMesh broken = large_shuffled_sphere();
+  broken.add_face(broken.face(123)); // a duplicate of face 123
+  broken.positions.push_back({9, 9, 9}); // an unreferenced vertex
+  const RepairResult plain = repair(PolygonMesh(broken), "s.ply");
+  const RepairResult asked = repair(PolygonMesh(broken), "s.ply", {.reorder = true});
+  EXPECT_FALSE(asked.reordered);
+  ASSERT_EQ(plain.repairs.size(), 2u);
+  EXPECT_EQ(asked.repairs, plain.repairs);
+  EXPECT_NE(asked.repairs[0].find("face " + std::to_string(broken.num_faces() - 1) + " duplicates face 123"), std::string::npos)
+      << asked.repairs[0];
+  EXPECT_EQ(asked.mesh.face_vertices, plain.mesh.face_vertices);
+  const auto refusal = [&](bool reorder) {
+    try {
+      repair(PolygonMesh(broken), "s.ply", {.strict = true, .reorder = reorder});
+    } catch (const TopologyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no refusal");
+  };
+  const std::string refused = refusal(true);
+  EXPECT_EQ(refused, refusal(false));
+  EXPECT_NE(refused.find("duplicates face 123"), std::string::npos) << refused;
+}
+
+// A position that is not a number is refused as it would be in the input's order; the
+// reorder it meets first must survive it.
+TEST(Locality, NonFinitePositionIsRefusedAsInTheInputOrder) {
+  PolygonMesh broken = large_shuffled_sphere();
+  broken.positions[5] = {std::nanf(""), 0, 0};
+  const auto refusal = [&](bool reorder) {
+    try {
+      repair(PolygonMesh(broken), "s.ply", {.reorder = reorder});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no refusal");
+  };
+  const std::string refused = refusal(true);
+  EXPECT_EQ(refused, refusal(false));
+  EXPECT_NE(refused.find("vertex 5 has a non-finite position"), std::string::npos) << refused;
+}
+
+// Through the CLI: the scattered mesh is reordered (-v says so) and covered by one curve.
+TEST(Locality, CurveOfAScatteredMeshThroughTheCli) {
+  const auto dir = test::output_dir();
+  write_mesh(large_shuffled_sphere(), dir / "shuffled.ply");
+  const auto run = test::run_cli({"curve", (dir / "shuffled.ply").string(), "-o", (dir / "c.ply").string(), "--samples",
+                                  "1", "-v"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("reordered"), std::string::npos) << run.err;
+  const Polylines curve = read_polylines(dir / "c.ply");
+  EXPECT_EQ(curve.size(), 1);
+  EXPECT_EQ(int64_t(curve.points.size()), int64_t(large_sphere().num_corners())); // one point per triangle: 2E
+  // --quad none names faces by their number: the input is left in its order.
+  const auto none = test::run_cli({"curve", (dir / "shuffled.ply").string(), "-o", (dir / "n.ply").string(), "--quad",
+                                   "none", "-v"});
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_EQ(none.err.find("reordered"), std::string::npos) << none.err;
+}
+
+} // namespace
+} // namespace meander
