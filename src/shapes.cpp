@@ -2,10 +2,12 @@
 
 #include "meander/error.h"
 #include "meander/subdivide.h"
+#include "random.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <string>
 
 namespace meander {
@@ -187,6 +189,27 @@ PolygonMesh make_shape(std::string_view name, int64_t faces, int genus) {
   if (name == "grid") return grid(faces);
   if (name == "moebius") return moebius(faces);
   throw UsageError("unknown shape '" + std::string(name) + "' (expected sphere, torus, pretzel, genus, grid or moebius)");
+}
+
+PolygonMesh shuffled(const PolygonMesh& mesh, uint64_t seed) {
+  Random random(seed);
+  const auto permutation = [&](int32_t n) { // Fisher-Yates
+    std::vector<int32_t> p(static_cast<size_t>(n));
+    std::iota(p.begin(), p.end(), 0);
+    for (int32_t i = n - 1; i > 0; --i) std::swap(p[size_t(i)], p[size_t(random.below(uint32_t(i) + 1))]);
+    return p;
+  };
+  const std::vector<int32_t> vertex_to = permutation(mesh.num_vertices()), face_from = permutation(mesh.num_faces());
+  PolygonMesh out;
+  out.positions.resize(mesh.positions.size());
+  for (int32_t v = 0; v < mesh.num_vertices(); ++v) out.positions[size_t(vertex_to[size_t(v)])] = mesh.positions[size_t(v)];
+  out.face_start.reserve(mesh.face_start.size());
+  out.face_vertices.reserve(mesh.face_vertices.size());
+  for (const int32_t f : face_from) {
+    for (const int32_t v : mesh.face(f)) out.face_vertices.push_back(vertex_to[size_t(v)]);
+    out.face_start.push_back(int32_t(out.face_vertices.size()));
+  }
+  return out;
 }
 
 } // namespace meander

@@ -16,35 +16,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numeric>
 
 namespace meander {
 namespace {
-
-// `mesh` with its vertices and faces in a fixed pseudo-random order.
-PolygonMesh shuffled(const PolygonMesh& mesh) {
-  uint64_t state = 12345;
-  const auto below = [&](size_t n) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return size_t((state >> 33) % n);
-  };
-  const auto permutation = [&](int32_t n) {
-    std::vector<int32_t> p(static_cast<size_t>(n));
-    std::iota(p.begin(), p.end(), 0);
-    for (size_t i = p.size(); i > 1; --i) std::swap(p[i - 1], p[below(i)]);
-    return p;
-  };
-  const std::vector<int32_t> vertex_to = permutation(mesh.num_vertices()), face_from = permutation(mesh.num_faces());
-  PolygonMesh out;
-  out.positions.resize(mesh.positions.size());
-  for (int32_t v = 0; v < mesh.num_vertices(); ++v) out.positions[size_t(vertex_to[size_t(v)])] = mesh.positions[size_t(v)];
-  for (const int32_t f : face_from) {
-    std::vector<int32_t> face;
-    for (const int32_t v : mesh.face(f)) face.push_back(vertex_to[size_t(v)]);
-    out.add_face(face);
-  }
-  return out;
-}
 
 // A hash of each face's corner positions in order, sorted: what reordering must keep.
 std::vector<uint64_t> faces_by_position(const PolygonMesh& mesh) {
@@ -66,7 +40,7 @@ const PolygonMesh& large_sphere() {
 }
 
 const PolygonMesh& large_shuffled_sphere() {
-  static const PolygonMesh mesh = shuffled(large_sphere());
+  static const PolygonMesh mesh = shuffled(large_sphere(), 1);
   return mesh;
 }
 
@@ -76,7 +50,7 @@ TEST(Locality, ShuffledMeshIsScatteredAndGeneratedOnesAreNot) {
   // OpenSubdiv numbers the refined vertices in a few streams, each in order.
   EXPECT_FALSE(is_scattered(genus_surface(2, 1'400'000)));
   EXPECT_TRUE(is_scattered(large_shuffled_sphere()));
-  EXPECT_FALSE(is_scattered(shuffled(sphere(20000)))); // small: fits the caches anyway
+  EXPECT_FALSE(is_scattered(shuffled(sphere(20000), 1))); // small: fits the caches anyway
 }
 
 TEST(Locality, ReorderedMeshIsTheSameSurfaceInOrder) {
@@ -112,7 +86,7 @@ TEST(Locality, MixedFaceSizesKeepTheirCorners) {
       mixed.add_face({q[0], q[2], q[3]});
     }
   }
-  const PolygonMesh input = shuffled(mixed);
+  const PolygonMesh input = shuffled(mixed, 1);
   ASSERT_TRUE(is_scattered(input));
   const PolygonMesh local = reordered(input, locality_order(input));
   EXPECT_EQ(faces_by_position(local), faces_by_position(input));
@@ -182,7 +156,10 @@ TEST(Locality, NonFinitePositionIsRefusedAsInTheInputOrder) {
 // Through the CLI: the scattered mesh is reordered (-v says so) and covered by one curve.
 TEST(Locality, CurveOfAScatteredMeshThroughTheCli) {
   const auto dir = test::output_dir();
-  write_mesh(large_shuffled_sphere(), dir / "shuffled.ply");
+  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "1100000", "--shuffle", "1", "-o", (dir / "shuffled.ply").string()})
+                .exit_code,
+            0);
+  ASSERT_EQ(read_mesh(dir / "shuffled.ply").face_vertices, large_shuffled_sphere().face_vertices);
   const auto run = test::run_cli({"curve", (dir / "shuffled.ply").string(), "-o", (dir / "c.ply").string(), "--samples",
                                   "1", "-v"});
   ASSERT_EQ(run.exit_code, 0) << run.err;

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <vector>
+
 namespace meander {
 namespace {
 
@@ -59,6 +63,30 @@ TEST(Shapes, PretzelIsALimitSurfaceWithoutCollapsedEdges) {
     for (size_t i = 0; i < v.size(); ++i)
       ASSERT_GT(norm(m.positions[size_t(v[i])] - m.positions[size_t(v[(i + 1) % v.size()])]), 1e-4) << "face " << f;
   }
+}
+
+// A shuffled mesh is the same surface: every face keeps its corners' positions in order,
+// the topology is unchanged, and the seed fixes the order.
+TEST(Shapes, ShuffledIsTheSameSurfaceInAnotherOrder) {
+  const PolygonMesh mesh = moebius(300); // quads, with boundary and no orientation
+  const PolygonMesh a = shuffled(mesh, 7), b = shuffled(mesh, 7), c = shuffled(mesh, 8);
+  ASSERT_EQ(a.num_faces(), mesh.num_faces());
+  ASSERT_EQ(a.num_vertices(), mesh.num_vertices());
+  EXPECT_EQ(a.face_vertices, b.face_vertices);
+  EXPECT_NE(a.face_vertices, c.face_vertices);
+  EXPECT_NE(a.face_vertices, mesh.face_vertices);
+  const auto corners = [](const PolygonMesh& m) {
+    std::vector<std::vector<std::array<float, 3>>> faces;
+    for (int32_t f = 0; f < m.num_faces(); ++f) {
+      auto& face = faces.emplace_back();
+      for (const int32_t v : m.face(f)) face.push_back({m.positions[size_t(v)].x, m.positions[size_t(v)].y, m.positions[size_t(v)].z});
+    }
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  };
+  EXPECT_EQ(corners(a), corners(mesh));
+  EXPECT_EQ(topology(a).chi, topology(mesh).chi);
+  EXPECT_EQ(topology(a).boundary_edges, topology(mesh).boundary_edges);
 }
 
 TEST(Shapes, RefusesUnknownNamesAndSizes) {

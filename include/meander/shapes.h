@@ -35,4 +35,9 @@ PolygonMesh moebius(int64_t faces);
 // "grid", "moebius". Throws UsageError for another name or faces < 1.
 PolygonMesh make_shape(std::string_view name, int64_t faces, int genus = 2);
 
+// The same surface with its vertices and faces in a random order (each face keeps its
+// corners), as some tools write meshes: the input for benchmarks and tests of scattered
+// meshes (locality.h). The same seed gives the same order on every platform.
+PolygonMesh shuffled(const PolygonMesh& mesh, uint64_t seed);
+
 } // namespace meander
