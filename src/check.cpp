@@ -796,7 +796,13 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
     } catch (const Error&) {
     }
   }
-  return repair_in_order(std::move(mesh), prefix, options);
+  RepairResult result = repair_in_order(std::move(mesh), prefix, options);
+  if (options.reorder && is_scattered(result.mesh)) { // its messages are told: the rest can run in order
+    result.mesh = reordered(result.mesh, locality_order(result.mesh));
+    result.connectivity = Connectivity();
+    result.reordered = true;
+  }
+  return result;
 }
 
 } // namespace meander

@@ -108,20 +108,23 @@ TEST(Locality, RepairReordersOnlyWhenAsked) {
   EXPECT_EQ(verify_cycle(quads, cycle), "");
 }
 
-// A mesh that needs repair is repaired in its own order: the messages name the input's
-// faces and vertices, as without reordering.
-TEST(Locality, MeshThatNeedsRepairKeepsItsOrderAndMessages) {
+// A mesh that needs repair is repaired in its own order, so that the messages name the
+// input's faces and vertices as without reordering; then the result is reordered.
+TEST(Locality, MeshThatNeedsRepairKeepsItsMessages) {
   PolygonMesh broken = large_shuffled_sphere();
   broken.add_face(broken.face(123)); // a duplicate of face 123
   broken.positions.push_back({9, 9, 9}); // an unreferenced vertex
   const RepairResult plain = repair(PolygonMesh(broken), "s.ply");
   const RepairResult asked = repair(PolygonMesh(broken), "s.ply", {.reorder = true});
-  EXPECT_FALSE(asked.reordered);
   ASSERT_EQ(plain.repairs.size(), 2u);
   EXPECT_EQ(asked.repairs, plain.repairs);
   EXPECT_NE(asked.repairs[0].find("face " + std::to_string(broken.num_faces() - 1) + " duplicates face 123"), std::string::npos)
       << asked.repairs[0];
-  EXPECT_EQ(asked.mesh.face_vertices, plain.mesh.face_vertices);
+  EXPECT_FALSE(plain.reordered);
+  EXPECT_TRUE(asked.reordered);
+  EXPECT_FALSE(is_scattered(asked.mesh));
+  EXPECT_EQ(faces_by_position(asked.mesh), faces_by_position(plain.mesh));
+  EXPECT_TRUE(asked.connectivity.edge_start.empty()); // it was the input order's
   const auto refusal = [&](bool reorder) {
     try {
       repair(PolygonMesh(broken), "s.ply", {.strict = true, .reorder = reorder});

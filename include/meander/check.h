@@ -86,10 +86,10 @@ struct RepairOptions {
   // server bounds what one request may cost; 0: no limit.
   int64_t max_faces = 0;
   // Let the result's vertices and faces come in another order when the mesh is large and
-  // scattered in memory (locality.h), since every later stage follows its adjacency:
-  // only if it needs no repair and gets no notice, so that messages always name the
-  // input's elements (a mesh that does is repaired in its own order). For callers whose
-  // output and messages never refer to the input's numbering.
+  // scattered in memory (locality.h), since every later stage follows its adjacency.
+  // Messages still name the input's elements: a mesh that needs a repair or gets a
+  // notice is repaired in its own order, and only its result reordered. For callers
+  // whose output and later messages never refer to the input's numbering.
   bool reorder = false;
 };
 
