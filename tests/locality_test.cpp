@@ -34,6 +34,16 @@ std::vector<uint64_t> faces_by_position(const PolygonMesh& mesh) {
   return faces;
 }
 
+// What repair refuses the mesh with, or "no refusal".
+std::string refusal(const PolygonMesh& mesh, const RepairOptions& options) {
+  try {
+    repair(PolygonMesh(mesh), "s.ply", options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no refusal";
+}
+
 const PolygonMesh& large_sphere() {
   static const PolygonMesh mesh = sphere(1'100'000); // above is_scattered's 2^20 faces
   return mesh;
@@ -125,16 +135,8 @@ TEST(Locality, MeshThatNeedsRepairKeepsItsMessages) {
   EXPECT_FALSE(is_scattered(asked.mesh));
   EXPECT_EQ(faces_by_position(asked.mesh), faces_by_position(plain.mesh));
   EXPECT_TRUE(asked.connectivity.edge_start.empty()); // it was the input order's
-  const auto refusal = [&](bool reorder) {
-    try {
-      repair(PolygonMesh(broken), "s.ply", {.strict = true, .reorder = reorder});
-    } catch (const TopologyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no refusal");
-  };
-  const std::string refused = refusal(true);
-  EXPECT_EQ(refused, refusal(false));
+  const std::string refused = refusal(broken, {.strict = true, .reorder = true});
+  EXPECT_EQ(refused, refusal(broken, {.strict = true}));
   EXPECT_NE(refused.find("duplicates face 123"), std::string::npos) << refused;
 }
 
@@ -143,16 +145,8 @@ TEST(Locality, MeshThatNeedsRepairKeepsItsMessages) {
 TEST(Locality, NonFinitePositionIsRefusedAsInTheInputOrder) {
   PolygonMesh broken = large_shuffled_sphere();
   broken.positions[5] = {std::nanf(""), 0, 0};
-  const auto refusal = [&](bool reorder) {
-    try {
-      repair(PolygonMesh(broken), "s.ply", {.reorder = reorder});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no refusal");
-  };
-  const std::string refused = refusal(true);
-  EXPECT_EQ(refused, refusal(false));
+  const std::string refused = refusal(broken, {.reorder = true});
+  EXPECT_EQ(refused, refusal(broken, {}));
   EXPECT_NE(refused.find("vertex 5 has a non-finite position"), std::string::npos) << refused;
 }
 
