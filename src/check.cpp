@@ -792,10 +792,13 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
                      std::to_string(options.max_faces));
   if (options.reorder && is_scattered(mesh) && all_in_range(mesh.face_vertices, mesh.num_vertices())) {
     // The input is kept until the reordered mesh proves to need nothing: otherwise it is
-    // repaired in its own order, so that every message names the input's elements.
+    // repaired in its own order, so that every message names the input's elements. Strict,
+    // the attempt stops at the first problem instead of repairing what will be thrown away.
+    RepairOptions first_problem = options;
+    first_problem.strict = true;
     try {
-      RepairResult result = repair_in_order(reordered(mesh, locality_order(mesh)), prefix, options);
-      if (result.repairs.empty() && result.notices.empty()) {
+      RepairResult result = repair_in_order(reordered(mesh, locality_order(mesh)), prefix, first_problem);
+      if (result.notices.empty()) {
         result.reordered = true;
         return result;
       }
