@@ -14,13 +14,15 @@ namespace meander {
 
 namespace {
 
-constexpr int32_t kScatteredFrom = 1 << 20; // faces; below, the arrays mostly fit the caches
+constexpr int32_t kScatteredFrom = 1 << 18; // faces; below, the arrays mostly fit the caches
 // is_scattered's sample: runs of faces, and the blocks of vertex indices their corners
-// touch. Measured per run of 1024 faces: 1-3 blocks on generated spheres and tori, 3 on
-// a shuffled sphere put back in order here, 20-27 on OpenSubdiv's refinements (a few
-// streams of vertices, each in order, which run as fast), 700-1100 on shuffled meshes.
+// touch. Measured per run of 1024 faces, blocks of 1024 vertices: 2-3 on generated
+// spheres, tori and grids from 300k to 10M triangles, 26-30 on OpenSubdiv's refinements (a
+// few streams of vertices, each in order, which run as fast), 147 on a shuffled sphere of
+// 300k triangles (all its blocks), 487 at 1M, 573 on a 10M sphere whose vertices are
+// sorted by x.
 constexpr int32_t kRuns = 64, kRun = 1024;
-constexpr int kBlockBits = 12;
+constexpr int kBlockBits = 10;
 constexpr int32_t kScatteredBlocks = 64;
 constexpr int kCellBits = 10;  // per axis: a 30-bit Morton code
 constexpr int kDigitBits = 10; // per counting pass: three passes

@@ -45,7 +45,7 @@ std::string refusal(const PolygonMesh& mesh, const RepairOptions& options) {
 }
 
 const PolygonMesh& large_sphere() {
-  static const PolygonMesh mesh = sphere(1'100'000); // above is_scattered's 2^20 faces
+  static const PolygonMesh mesh = sphere(300'000); // above is_scattered's 2^18 faces
   return mesh;
 }
 
@@ -55,10 +55,15 @@ const PolygonMesh& large_shuffled_sphere() {
 }
 
 TEST(Locality, ShuffledMeshIsScatteredAndGeneratedOnesAreNot) {
+  // Each large enough to be looked at: 2^18 faces or more.
+  ASSERT_GE(large_sphere().num_faces(), 1 << 18);
   EXPECT_FALSE(is_scattered(large_sphere()));
-  EXPECT_FALSE(is_scattered(torus(1'100'000)));
+  const PolygonMesh ring = torus(300'000), subdivided = genus_surface(2, 1'000'000);
+  ASSERT_GE(ring.num_faces(), 1 << 18);
+  ASSERT_GE(subdivided.num_faces(), 1 << 18);
+  EXPECT_FALSE(is_scattered(ring));
   // OpenSubdiv numbers the refined vertices in a few streams, each in order.
-  EXPECT_FALSE(is_scattered(genus_surface(2, 1'400'000)));
+  EXPECT_FALSE(is_scattered(subdivided));
   EXPECT_TRUE(is_scattered(large_shuffled_sphere()));
   EXPECT_FALSE(is_scattered(shuffled(sphere(20000), 1))); // small: fits the caches anyway
 }
@@ -83,7 +88,7 @@ TEST(Locality, ReorderedMeshIsTheSameSurfaceInOrder) {
 }
 
 TEST(Locality, MixedFaceSizesKeepTheirCorners) {
-  PolygonMesh mesh = genus_surface(2, 1'048'576); // quads, half of them split below: 2^20 faces and more
+  PolygonMesh mesh = genus_surface(2, 262'144); // quads, half of them split below
   // Split every other quad into two triangles, so that sizes differ from face to face.
   PolygonMesh mixed;
   mixed.positions = mesh.positions;
@@ -97,6 +102,7 @@ TEST(Locality, MixedFaceSizesKeepTheirCorners) {
     }
   }
   const PolygonMesh input = shuffled(mixed, 1);
+  ASSERT_GE(input.num_faces(), 1 << 18);
   ASSERT_TRUE(is_scattered(input));
   const PolygonMesh local = reordered(input, locality_order(input));
   EXPECT_EQ(faces_by_position(local), faces_by_position(input));
@@ -153,7 +159,7 @@ TEST(Locality, NonFinitePositionIsRefusedAsInTheInputOrder) {
 // Through the CLI: the scattered mesh is reordered (-v says so) and covered by one curve.
 TEST(Locality, CurveOfAScatteredMeshThroughTheCli) {
   const auto dir = test::output_dir();
-  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "1100000", "--shuffle", "1", "-o", (dir / "shuffled.ply").string()})
+  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "300000", "--shuffle", "1", "-o", (dir / "shuffled.ply").string()})
                 .exit_code,
             0);
   ASSERT_EQ(read_mesh(dir / "shuffled.ply").face_vertices, large_shuffled_sphere().face_vertices);

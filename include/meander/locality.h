@@ -22,9 +22,9 @@ struct MeshOrder {
   std::vector<int32_t> vertex_rank;
 };
 
-// Whether the mesh is large enough for its order to matter (2^20 faces or more) and
+// Whether the mesh is large enough for its order to matter (2^18 faces or more) and
 // scattered: runs of 1024 consecutive faces, 64 of them spread over the mesh, touch on
-// average more than 64 blocks of 4096 vertex indices. A mesh whose faces follow its
+// average more than 64 blocks of 1024 vertex indices. A mesh whose faces follow its
 // surface touches a few; one whose vertices come in a few streams, each in order (as a
 // subdivision numbers them by level), a few dozen. Reads only the indices, whatever they
 // hold.
