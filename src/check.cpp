@@ -790,7 +790,8 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
   if (options.max_faces > 0 && mesh.num_faces() > options.max_faces)
     throw InputError(prefix + std::to_string(mesh.num_faces()) + " faces, more than the limit of " +
                      std::to_string(options.max_faces));
-  if (options.reorder && is_scattered(mesh) && all_in_range(mesh.face_vertices, mesh.num_vertices())) {
+  const bool scattered = options.reorder && is_scattered(mesh);
+  if (scattered && all_in_range(mesh.face_vertices, mesh.num_vertices())) {
     // The input is kept until the reordered mesh proves to need nothing: otherwise it is
     // repaired in its own order, so that every message names the input's elements. Strict,
     // the attempt stops at the first problem instead of repairing what will be thrown away.
@@ -806,7 +807,7 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
     }
   }
   RepairResult result = repair_in_order(std::move(mesh), prefix, options);
-  if (options.reorder && is_scattered(result.mesh)) { // its messages are told: the rest can run in order
+  if (scattered) { // its messages are told: the rest can run in order
     result.mesh = reordered(result.mesh, locality_order(result.mesh));
     result.connectivity = Connectivity();
     result.reordered = true;

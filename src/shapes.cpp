@@ -1,6 +1,7 @@
 #include "meander/shapes.h"
 
 #include "meander/error.h"
+#include "meander/locality.h"
 #include "meander/subdivide.h"
 #include "random.h"
 
@@ -199,17 +200,10 @@ PolygonMesh shuffled(const PolygonMesh& mesh, uint64_t seed) {
     for (int32_t i = n - 1; i > 0; --i) std::swap(p[size_t(i)], p[size_t(random.below(uint32_t(i) + 1))]);
     return p;
   };
-  const std::vector<int32_t> vertex_to = permutation(mesh.num_vertices()), face_from = permutation(mesh.num_faces());
-  PolygonMesh out;
-  out.positions.resize(mesh.positions.size());
-  for (int32_t v = 0; v < mesh.num_vertices(); ++v) out.positions[size_t(vertex_to[size_t(v)])] = mesh.positions[size_t(v)];
-  out.face_start.reserve(mesh.face_start.size());
-  out.face_vertices.reserve(mesh.face_vertices.size());
-  for (const int32_t f : face_from) {
-    for (const int32_t v : mesh.face(f)) out.face_vertices.push_back(vertex_to[size_t(v)]);
-    out.face_start.push_back(int32_t(out.face_vertices.size()));
-  }
-  return out;
+  MeshOrder order;
+  order.vertex_rank = permutation(mesh.num_vertices());
+  order.face_order = permutation(mesh.num_faces());
+  return reordered(mesh, order);
 }
 
 } // namespace meander

@@ -117,7 +117,7 @@ TEST(AtomicFile, CurveFileIsNeverReservedPastItsSize) {
     done = true;
   });
   uintmax_t longest = 0;
-  for (int looks = 0; !done; ++looks) {
+  while (!done) {
     longest = std::max(longest, temporary_size(target));
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
