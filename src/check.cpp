@@ -216,7 +216,7 @@ EdgeScan scan_edges(const PolygonMesh& m, const Connectivity& c) {
       }
       // Faces that repeat each other share every edge, so where they share a manifold edge
       // no third face can repeat them.
-      const int32_t f1 = c.halfedge_face[size_t(h1)], f2 = c.halfedge_face[size_t(h2)];
+      const int32_t f1 = c.face_of(h1), f2 = c.face_of(h2);
       if (same_cycle(m.face(f1), m.face(f2))) n.duplicates.emplace_back(f2, f1);
     }
   });
@@ -243,7 +243,7 @@ EdgeScan scan_edges(const PolygonMesh& m, const Connectivity& c) {
       }
     if (degree <= 2) continue;
     for (const int32_t h : c.halfedges(edge)) {
-      const int32_t g = c.halfedge_face[size_t(h)];
+      const int32_t g = c.face_of(h);
       if (g >= f) break;
       if (same_cycle(m.face(f), m.face(g))) {
         found(f, g);
@@ -339,7 +339,7 @@ Sheets find_sheets(const PolygonMesh& m, const Connectivity& c) {
   for (int32_t e = 0; e < c.num_edges(); ++e) {
     if (c.edge_degree(e) != 2) continue;
     const int32_t h1 = c.halfedges(e)[0], h2 = c.halfedges(e)[1];
-    const int32_t f1 = c.halfedge_face[size_t(h1)], f2 = c.halfedge_face[size_t(h2)];
+    const int32_t f1 = c.face_of(h1), f2 = c.face_of(h2);
     if (!windings.unite(f1, f2, uint8_t(m.face_vertices[size_t(h1)] != m.face_vertices[size_t(h2)] ? 0 : 1)))
       odd_cycle[size_t(f1)] = 1;
   }
@@ -494,7 +494,7 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
   // Components: sheets joined across non-manifold edges, numbered by their first face
   // (sheets are numbered that way already).
   const Sheets sheets = find_sheets(m, c);
-  const auto sheet_of_halfedge = [&](int32_t h) { return sheets.sheet[size_t(c.halfedge_face[size_t(h)])]; };
+  const auto sheet_of_halfedge = [&](int32_t h) { return sheets.sheet[size_t(c.face_of(h))]; };
   UnionFind glued(sheets.size());
   for (int32_t e = 0; e < c.num_edges(); ++e)
     if (c.edge_degree(e) > 2)
@@ -521,7 +521,7 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
     ++components[size_t(k)].faces;
   }
   for (int32_t e = 0; e < c.num_edges(); ++e) {
-    ComponentReport& k = component(c.halfedge_face[size_t(c.halfedges(e)[0])]);
+    ComponentReport& k = component(c.face_of(c.halfedges(e)[0]));
     ++k.edges;
     k.misoriented_edges += misoriented(m, c, e);
     if (c.edge_degree(e) > 2) k.manifold = false;
@@ -535,7 +535,7 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
   for (int32_t h = 0; h < m.num_corners(); ++h) {
     if (!corners.is_root(h)) continue;
     const int32_t v = m.face_vertices[size_t(h)];
-    ComponentReport& k = component(c.halfedge_face[size_t(h)]);
+    ComponentReport& k = component(c.face_of(h));
     if (fans[size_t(v)] == 1) {
       ++k.vertices;
     } else {
@@ -557,7 +557,7 @@ void inspect_topology(const PolygonMesh& m, MeshReport& report) {
       if (counted[size_t(loop)]) continue;
       counted[size_t(loop)] = true;
       ++report.boundary_loops;
-      ++component(c.halfedge_face[size_t(h)]).boundary_loops;
+      ++component(c.face_of(h)).boundary_loops;
     }
 
   for (ComponentReport& k : components) {
@@ -734,10 +734,10 @@ RepairResult repair_in_order(PolygonMesh&& mesh, const std::string& prefix, cons
     const Sheets sheets = find_sheets(m, c);
     if (options.strict)
       for (int32_t e = 0; e < c.num_edges(); ++e) {
-        const int32_t f = c.halfedge_face[size_t(c.halfedges(e)[0])];
+        const int32_t f = c.face_of(c.halfedges(e)[0]);
         if (misoriented(m, c, e) && sheets.orientable[size_t(sheets.sheet[size_t(f)])])
           refuse("faces " + std::to_string(input_face(f)) + " and " +
-                 std::to_string(input_face(c.halfedge_face[size_t(c.halfedges(e)[1])])) +
+                 std::to_string(input_face(c.face_of(c.halfedges(e)[1]))) +
                  " disagree in orientation across edge " + edge_name(c.edge_vertices[size_t(e)]));
       }
     // Flip the minority of each orientable sheet; a tie keeps the first face.

@@ -6,6 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
@@ -25,7 +26,16 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
   const int32_t nv = mesh.num_vertices();
   const int32_t nh = mesh.num_corners();
   Connectivity c;
-  c.halfedge_face.resize(size_t(nh));
+  const int32_t nf = mesh.num_faces();
+  c.face_size = nf > 0 ? mesh.face_size(0) : 0;
+  c.face_size = tbb::parallel_reduce(
+      tbb::blocked_range<int32_t>(0, nf, 1 << 16), c.face_size,
+      [&](const tbb::blocked_range<int32_t>& r, int32_t size) {
+        for (int32_t f = r.begin(); f < r.end() && size > 0; ++f) size = mesh.face_size(f) == size ? size : 0;
+        return size;
+      },
+      [](int32_t a, int32_t b) { return a == b ? a : 0; });
+  if (c.face_size == 0) c.halfedge_face.resize(size_t(nh));
   // Counting sort by lower vertex (linear, unlike a hash map or a comparison sort), in
   // a few fixed chunks of faces with a count per chunk and vertex: no atomic operations,
   // which cost more than the counting. The sort below restores one order whatever the
@@ -34,7 +44,6 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
   // halfedge-indexed array; the keys live in halfedge_edge's memory until the edges are
   // numbered (fresh pages cost more than the work).
   const int32_t chunks = std::clamp(tbb::this_task_arena::max_concurrency(), 1, kMaxChunks);
-  const int32_t nf = mesh.num_faces();
   auto chunk_faces = [&](int32_t k) { return int32_t(int64_t(nf) * k / chunks); };
   // place[lo * chunks + k]: where chunk k puts its next halfedge of lower vertex lo.
   std::vector<int32_t> place(size_t(nv) * size_t(chunks), 0);
@@ -50,7 +59,7 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
     }, tbb::static_partitioner());
   };
   for_each_chunk([&](int32_t f, int32_t h, int32_t, int32_t, int32_t& count) {
-    c.halfedge_face[size_t(h)] = f;
+    if (c.face_size == 0) c.halfedge_face[size_t(h)] = f;
     ++count;
   });
   // range[lo] .. range[lo + 1]: the halfedges of lower vertex lo once placed.

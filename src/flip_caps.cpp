@@ -59,7 +59,7 @@ private:
   bool free_triangle(int32_t f) const { return mesh_.face_size(f) == 3 && !touched_[size_t(f)]; }
 
   bool flip(int32_t h1, int32_t h2) {
-    const int32_t f1 = c_.halfedge_face[size_t(h1)], f2 = c_.halfedge_face[size_t(h2)];
+    const int32_t f1 = c_.face_of(h1), f2 = c_.face_of(h2);
     if (!free_triangle(f1) || !free_triangle(f2)) return false;
     const int32_t a = mesh_.face_vertices[size_t(h1)], b = target(h1);
     if (mesh_.face_vertices[size_t(h2)] != b || target(h2) != a) return false; // misoriented pair
@@ -96,7 +96,7 @@ private:
   // The apex must be inside the surface, or it would join two boundary fans (a
   // non-manifold vertex); then the cap's other two edges are inside too.
   bool cut(int32_t h) {
-    const int32_t f = c_.halfedge_face[size_t(h)];
+    const int32_t f = c_.face_of(h);
     if (!free_triangle(f)) return false;
     const int32_t a = mesh_.face_vertices[size_t(h)], b = target(h), cv = opposite(h);
     if (on_boundary_[size_t(cv)]) return false;

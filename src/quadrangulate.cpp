@@ -84,14 +84,14 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
       const int32_t a = hs[0];
       const int32_t x = mesh.face_vertices[size_t(a)];
       const int32_t y = halfedge_target(mesh, c, a);
-      const int32_t fa = nv + c.halfedge_face[size_t(a)];
+      const int32_t fa = nv + c.face_of(a);
       sides[size_t(a)] = pack(3, 2);
       if (hs.size() == 1) {
         q.quads[size_t(e)] = {x, -1, y, fa};
         continue;
       }
       const int32_t b = hs[1];
-      q.quads[size_t(e)] = {x, nv + c.halfedge_face[size_t(b)], y, fa};
+      q.quads[size_t(e)] = {x, nv + c.face_of(b), y, fa};
       sides[size_t(b)] = mesh.face_vertices[size_t(b)] == x ? pack(0, 1) : pack(1, 0);
     }
   });

@@ -417,6 +417,7 @@ TEST(CheckRepair, HandsOnTheConnectivityOfItsResult) {
     const Connectivity fresh = build_connectivity(r.mesh);
     EXPECT_EQ(r.connectivity.halfedge_edge, fresh.halfedge_edge);
     EXPECT_EQ(r.connectivity.halfedge_face, fresh.halfedge_face);
+    EXPECT_EQ(r.connectivity.face_size, fresh.face_size);
     EXPECT_EQ(r.connectivity.edge_vertices, fresh.edge_vertices);
     EXPECT_EQ(r.connectivity.edge_start, fresh.edge_start);
     EXPECT_EQ(r.connectivity.edge_halfedges, fresh.edge_halfedges);

@@ -94,10 +94,44 @@ TEST(Connectivity, MatchesAMapReferenceOnALargeShuffledMesh) {
     ASSERT_EQ(std::vector<int32_t>(c.halfedges(e).begin(), c.halfedges(e).end()), halfedges);
     for (int32_t h : halfedges) {
       ASSERT_EQ(c.halfedge_edge[size_t(h)], e);
-      ASSERT_EQ(m.face_start[c.halfedge_face[size_t(h)]] <= h && h < m.face_start[c.halfedge_face[size_t(h)] + 1], true);
+      ASSERT_EQ(m.face_start[c.face_of(h)] <= h && h < m.face_start[c.face_of(h) + 1], true);
     }
     ++e;
   }
+}
+
+// A mesh of one face size names faces by division and keeps no halfedge_face; a mixed
+// one keeps it. Either way every halfedge's face and successor agree with face_start.
+TEST(Connectivity, FaceOfEveryHalfedgeWithAndWithoutTheArray) {
+  const auto expect_faces = [](const PolygonMesh& m, int32_t face_size) {
+    const Connectivity c = build_connectivity(m);
+    EXPECT_EQ(c.face_size, face_size);
+    EXPECT_EQ(c.halfedge_face.size(), face_size > 0 ? 0 : size_t(m.num_corners()));
+    for (int32_t f = 0; f < m.num_faces(); ++f)
+      for (int32_t h = m.face_start[f]; h < m.face_start[f + 1]; ++h) {
+        ASSERT_EQ(c.face_of(h), f) << "halfedge " << h;
+        ASSERT_EQ(next_halfedge(m, c, h), h + 1 == m.face_start[f + 1] ? m.face_start[f] : h + 1) << "halfedge " << h;
+      }
+  };
+  PolygonMesh m;
+  for (int i = 0; i < 12; ++i) m.positions.push_back({float(i), float(i * i % 7), 0});
+  for (const int size : {3, 4, 5}) {
+    SCOPED_TRACE(size);
+    PolygonMesh uniform = m;
+    for (int32_t f = 0; f < 4; ++f) {
+      std::vector<int32_t> face;
+      for (int k = 0; k < size; ++k) face.push_back((2 * f + k) % 12);
+      uniform.add_face(face);
+    }
+    expect_faces(uniform, size);
+    PolygonMesh mixed = uniform;
+    mixed.add_face({0, 5, 9});
+    expect_faces(mixed, size == 3 ? 3 : 0);
+    mixed.add_face({1, 3, 8, 10});
+    expect_faces(mixed, 0);
+  }
+  expect_faces(sphere(300000), 3);
+  expect_faces(PolygonMesh{}, 0);
 }
 
 } // namespace

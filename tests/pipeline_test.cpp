@@ -40,9 +40,9 @@ int components(const PolygonMesh& m) {
     changed = false;
     for (int32_t e = 0; e < c.num_edges(); ++e) {
       int32_t low = INT32_MAX;
-      for (int32_t h : c.halfedges(e)) low = std::min(low, label[size_t(c.halfedge_face[size_t(h)])]);
+      for (int32_t h : c.halfedges(e)) low = std::min(low, label[size_t(c.face_of(h))]);
       for (int32_t h : c.halfedges(e))
-        if (label[size_t(c.halfedge_face[size_t(h)])] != low) label[size_t(c.halfedge_face[size_t(h)])] = low, changed = true;
+        if (label[size_t(c.face_of(h))] != low) label[size_t(c.face_of(h))] = low, changed = true;
     }
   }
   std::sort(label.begin(), label.end());

@@ -18,14 +18,25 @@ namespace meander {
 // of its face. Edge e joins edge_vertices[e] = {lo, hi} (lo < hi) and is crossed by the
 // halfedges edge_halfedges[edge_start[e] .. edge_start[e+1]) in increasing order:
 // 1 on a boundary edge, 2 on a manifold interior edge, more on a non-manifold edge.
-// Edges are numbered by increasing (lo, hi).
+// Edges are numbered by increasing (lo, hi). face_of(h) is the face of halfedge h: found
+// by division when every face has `face_size` corners (a triangle or a quad mesh), from
+// halfedge_face otherwise (face_size 0), since an array as long as the corners is
+// 114 MB on 10M triangles, and every large array costs this project's machines more to
+// take fresh than to fill.
 struct Connectivity {
   std::vector<int32_t> halfedge_edge;
   std::vector<int32_t> halfedge_face;
+  int32_t face_size = 0;
   std::vector<std::array<int32_t, 2>> edge_vertices;
   std::vector<int32_t> edge_start;
   std::vector<int32_t> edge_halfedges;
 
+  int32_t face_of(int32_t h) const {
+    // Division by a constant is a multiplication; by a variable, ten times as slow.
+    if (face_size == 3) return int32_t(uint32_t(h) / 3);
+    if (face_size == 4) return int32_t(uint32_t(h) / 4);
+    return face_size > 0 ? h / face_size : halfedge_face[size_t(h)];
+  }
   int32_t num_edges() const { return edge_start.empty() ? 0 : int32_t(edge_start.size()) - 1; }
   int32_t edge_degree(int32_t e) const { return edge_start[e + 1] - edge_start[e]; }
   std::span<const int32_t> halfedges(int32_t e) const {
@@ -41,7 +52,8 @@ Connectivity build_connectivity(const PolygonMesh& mesh);
 
 // The halfedge after h in its face.
 inline int32_t next_halfedge(const PolygonMesh& mesh, const Connectivity& c, int32_t h) {
-  int32_t f = c.halfedge_face[h];
+  const int32_t f = c.face_of(h);
+  if (c.face_size > 0) return h + 1 == (f + 1) * c.face_size ? f * c.face_size : h + 1;
   return h + 1 == mesh.face_start[f + 1] ? mesh.face_start[f] : h + 1;
 }
 
