@@ -144,65 +144,48 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
   if (initial) diagonal.assign(options.initial_diagonal.begin(), options.initial_diagonal.end());
 
   // With every quad split along its initial diagonal the triangles form disjoint loops
-  // (each triangle has two quad sides, each side two triangles): the nodes of the graph.
-  // Graph edge e is quad edge_quad[e], or quad e itself when edge_quad is empty: when
-  // every quad joins two loops, as on a closed mesh, which spares an array as long as the
-  // graph's edges.
-  Graph graph;
-  std::vector<int32_t> edge_quad;
-  const auto quad_of = [&](int32_t e) { return edge_quad.empty() ? e : edge_quad[size_t(e)]; };
-  const auto add_edges = [&](auto&& ends) { // ends(q): the loops that quad q joins, or equal ones
-    bool every_quad = true;
-    for (int32_t q = 0; q < nq && every_quad; ++q) every_quad = !m.is_half(q) && ends(q)[0] != ends(q)[1];
-    if (every_quad) {
-      graph.edges.resize(size_t(nq));
-      tbb::parallel_for(tbb::blocked_range<int32_t>(0, nq, 1 << 16), [&](const tbb::blocked_range<int32_t>& r) {
-        for (int32_t q = r.begin(); q < r.end(); ++q) graph.edges[size_t(q)] = ends(q);
-      });
-      return;
-    }
-    // At most one graph edge per quad: reserving spares the copies of a growing array.
-    graph.edges.reserve(size_t(nq));
-    edge_quad.reserve(size_t(nq));
-    for (int32_t q = 0; q < nq; ++q)
-      if (const auto e = ends(q); !m.is_half(q) && e[0] != e[1]) {
-        graph.edges.push_back(e);
-        edge_quad.push_back(q);
-      }
-  };
+  // (each triangle has two quad sides, each side two triangles): the nodes of the graph,
+  // whose edge q is quad q, joining the loops of its two triangles (absent at a half quad,
+  // which has one). The edges are read from where the loops are named, not copied.
+  EdgeTable graph{.num_edges = nq};
+  std::vector<int32_t> loop;
   if (m.face_point_offset >= 0 && !initial) {
-    // Dual of Simplest: the loops are the faces, named by the face points.
+    // Dual of Simplest: the loops are the faces, named by the face points at corners 1
+    // and 3 (corner 1 of a half quad is -1).
+    static_assert(sizeof(std::array<int32_t, 4>) == 4 * sizeof(int32_t));
     graph.num_nodes = int32_t(m.positions.size()) - m.face_point_offset;
-    add_edges([&](int32_t q) {
-      return std::array<int32_t, 2>{m.quads[size_t(q)][1] - m.face_point_offset, m.quads[size_t(q)][3] - m.face_point_offset};
-    });
+    graph.rows = nq > 0 ? m.quads[0].data() : nullptr;
+    graph.stride = 4;
+    graph.first = 1;
+    graph.second = 3;
+    graph.bias = m.face_point_offset;
   } else {
-    std::vector<int32_t> loop(2 * size_t(nq), -1);
+    loop.assign(2 * size_t(nq), -1); // a half quad's first slot stays -1
     for (int32_t q = 0; q < nq; ++q)
       for (int a = m.is_half(q) ? 3 : 1 - diagonal[size_t(q)]; a <= 3; a += 2)
         if (loop[size_t(slot(q, a))] < 0) {
           walk_loop(m, diagonal, q, a, [&](int32_t tq, int ta) { loop[size_t(slot(tq, ta))] = graph.num_nodes; });
           ++graph.num_nodes;
         }
-    add_edges([&](int32_t q) { return std::array<int32_t, 2>{loop[size_t(2 * q)], loop[size_t(2 * q + 1)]}; });
+    graph.rows = loop.data();
   }
   // The shaped tree flips first the quads whose flip shapes their triangles better: the
   // variable wire's slabs fold where the cycle crosses a sliver (docs/wires.md).
+  std::vector<uint8_t> rank;
   if (options.tree == TreeStrategy::shaped) {
-    graph.rank.resize(graph.edges.size());
-    for (size_t e = 0; e < graph.edges.size(); ++e) {
-      const int32_t q = quad_of(int32_t(e));
-      graph.rank[e] = flip_rank(m, q, diagonal[size_t(q)], options.seed);
-    }
+    rank.assign(size_t(nq), 0);
+    for (int32_t q = 0; q < nq; ++q)
+      if (!m.is_half(q)) rank[size_t(q)] = flip_rank(m, q, diagonal[size_t(q)], options.seed);
+    graph.rank = rank;
   }
   // Flipping a quad whose two triangles lie on different loops merges the loops, so
   // flipping the quads of a spanning forest of "loops joined by a quad" leaves one loop
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
-  const std::vector<int32_t> forest = spanning_forest(std::move(graph), options.tree, options.seed);
+  const std::vector<int32_t> forest = spanning_forest(graph, options.tree, options.seed);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) diagonal[size_t(quad_of(forest[i]))] ^= 1; // each quad once
+    for (size_t i = r.begin(); i < r.end(); ++i) diagonal[size_t(forest[i])] ^= 1; // each quad once
   });
-  std::vector<int32_t>().swap(edge_quad);
+  std::vector<int32_t>().swap(loop);
   return loops_of(m, std::move(diagonal), observer);
 }
 

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <functional>
 #include <string>
 #include <utility>
 
@@ -47,19 +46,19 @@ struct Adjacency {
   int32_t degree(int32_t u) const { return start[size_t(u) + 1] - start[size_t(u)]; }
 };
 
-Adjacency build_adjacency(const Graph& g) {
+Adjacency build_adjacency(const EdgeTable& g) {
   Adjacency a;
   a.start.assign(size_t(g.num_nodes) + 1, 0);
-  for (const auto& [u, v] : g.edges)
-    if (u != v) {
+  for (int32_t e = 0; e < g.num_edges; ++e)
+    if (const auto [u, v] = g.ends(e); u != v) {
       ++a.start[size_t(u) + 1];
       ++a.start[size_t(v) + 1];
     }
   for (int32_t n = 0; n < g.num_nodes; ++n) a.start[size_t(n) + 1] += a.start[size_t(n)];
   a.adjacent.resize(size_t(a.start.back()));
   std::vector<int32_t> fill(a.start.begin(), a.start.end() - 1);
-  for (int32_t e = 0; e < int32_t(g.edges.size()); ++e) {
-    const auto [u, v] = g.edges[size_t(e)];
+  for (int32_t e = 0; e < g.num_edges; ++e) {
+    const auto [u, v] = g.ends(e);
     if (u == v) continue;
     a.adjacent[size_t(fill[size_t(u)]++)] = {v, e};
     a.adjacent[size_t(fill[size_t(v)]++)] = {u, e};
@@ -84,10 +83,10 @@ struct TreeEdge {
 // needed, once per edge and round, which costs less than keeping them.
 template <typename Key>
 struct GraphEdges {
-  const Graph& g;
+  const EdgeTable& g;
   const Key& key;
-  int32_t size() const { return int32_t(g.edges.size()); }
-  std::array<int32_t, 2> ends(int32_t i) const { return g.edges[size_t(i)]; }
+  int32_t size() const { return g.num_edges; }
+  std::array<int32_t, 2> ends(int32_t i) const { return g.ends(i); }
   int32_t id(int32_t i) const { return i; }
   Weight weight(int32_t i) const { return weigh(key(i), i); }
 };
@@ -102,14 +101,14 @@ struct TreeEdges {
   Weight weight(int32_t i) const { return weigh(key(id(i)), i); }
 };
 
-// One Borůvka round over n nodes: adds each node's lightest edge to `forest`, and labels
+// One Borůvka round over n nodes: marks each node's lightest edge in `in_forest`, and labels
 // the nodes 0, 1, ... by the trees those edges make, in the order of their smallest
 // nodes. Returns the number of labels. Every pass is parallel: with distinct weights each
 // tree of lightest edges has exactly one edge chosen from both ends, so a node's parent
 // can be the other end of its own lightest edge, the smaller node of that doubly chosen
 // edge being the root, and no union-find is needed.
 template <typename Edges>
-int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label, std::vector<int32_t>& forest) {
+int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label, std::vector<uint8_t>& in_forest) {
   const auto nodes = tbb::blocked_range<int32_t>(0, n, 1 << 16);
   // Each node's lightest edge as its weight, which holds the edge's place: a minimum
   // found without fetching the weight of the edge to beat.
@@ -138,16 +137,10 @@ int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label
       parent[size_t(x)] = y != x && other_end(y) == x && x < y ? x : y;
     }
   });
-  const auto added = chunk_offsets(n, [&](int32_t begin, int32_t end) {
-    int32_t count = 0;
-    for (int32_t x = begin; x < end; ++x) count += parent[size_t(x)] != x;
-    return count;
-  });
-  const size_t before = forest.size();
-  forest.resize(before + size_t(added.back()));
-  for_chunks(n, [&](int32_t c, int32_t begin, int32_t end) {
-    for (int32_t x = begin, next = added[size_t(c)]; x < end; ++x)
-      if (parent[size_t(x)] != x) forest[before + size_t(next++)] = edges.id(place_of(lightest[size_t(x)]));
+  // Each edge added is the lightest of exactly one node that is not a root: marked once.
+  tbb::parallel_for(nodes, [&](const auto& range) {
+    for (int32_t x = range.begin(); x < range.end(); ++x)
+      if (parent[size_t(x)] != x) in_forest[size_t(edges.id(place_of(lightest[size_t(x)])))] = 1;
   });
   std::vector<Weight>().swap(lightest);
   // Each node to its root, halving the path as it goes (another thread only ever sees a
@@ -190,7 +183,7 @@ template <typename Edges>
 std::vector<TreeEdge> edges_between_trees(const Edges& edges, const std::vector<int32_t>& label) {
   const auto joins = [&](int32_t i) {
     const auto [u, v] = edges.ends(i);
-    return label[size_t(u)] != label[size_t(v)];
+    return u != v && label[size_t(u)] != label[size_t(v)];
   };
   const auto at = chunk_offsets(edges.size(), [&](int32_t begin, int32_t end) {
     int32_t count = 0;
@@ -208,6 +201,31 @@ std::vector<TreeEdge> edges_between_trees(const Edges& edges, const std::vector<
   return between;
 }
 
+// Keeps, in place and in their order, the edges that join two different trees of
+// `label`, now between those trees: a round's edges are the largest array it makes, and
+// two lists at once were the run's peak. Each chunk packs its edges at its own start,
+// then the chunks close up in order.
+void keep_edges_between_trees(std::vector<TreeEdge>& edges, const std::vector<int32_t>& label) {
+  std::array<int32_t, kChunks + 1> kept{};
+  for_chunks(int32_t(edges.size()), [&](int32_t c, int32_t begin, int32_t end) {
+    int32_t next = begin;
+    for (int32_t i = begin; i < end; ++i) {
+      const TreeEdge e = edges[size_t(i)];
+      const int32_t u = label[size_t(e.u)], v = label[size_t(e.v)];
+      if (u != v) edges[size_t(next++)] = {u, v, e.id};
+    }
+    kept[size_t(c) + 1] = next - begin;
+  });
+  const int32_t chunk = (int32_t(edges.size()) + kChunks - 1) / kChunks;
+  size_t size = 0;
+  for (int32_t c = 0; c < kChunks; ++c) {
+    const auto from = edges.begin() + std::min(ptrdiff_t(c) * chunk, ptrdiff_t(edges.size()));
+    std::move(from, from + kept[size_t(c) + 1], edges.begin() + ptrdiff_t(size));
+    size += size_t(kept[size_t(c) + 1]);
+  }
+  edges.resize(size);
+}
+
 // The minimum spanning forest under random keys, or with `ranked` by increasing
 // Graph::rank and by random key within a rank, ties by edge id: every seed's tree is that
 // of Kruskal over a random permutation. Found by Borůvka rounds, each of which adds every
@@ -216,10 +234,11 @@ std::vector<TreeEdge> edges_between_trees(const Edges& edges, const std::vector<
 // each round, and half the edges. Every pass is parallel, and the first reads the edges
 // in their own order (neighbouring faces have nearby ids), where Kruskal would sort them
 // and then run a serial union-find over nodes in random order. With distinct weights the
-// minimum forest is unique, so it is Kruskal's. `edges_read()` is called once g.edges
-// are no longer read: after the first round.
-std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked, const std::function<void()>& edges_read) {
-  const size_t m = g.edges.size();
+// minimum forest is unique, so it is Kruskal's. With `count_all` an edge's random key is
+// drawn for its id; without, for its place among the edges that join two nodes, as if
+// the absent edges and self loops were not listed.
+std::vector<uint8_t> minimum_forest(const EdgeTable& g, uint64_t seed, bool ranked, bool count_all) {
+  const size_t m = size_t(g.num_edges);
   ranked = ranked && !g.rank.empty();
   if (ranked && g.rank.size() != m)
     throw UsageError("spanning tree: " + std::to_string(g.rank.size()) + " ranks for " + std::to_string(m) + " edges");
@@ -234,22 +253,40 @@ std::vector<int32_t> minimum_forest(const Graph& g, uint64_t seed, bool ranked, 
   const uint64_t salt = Random(seed).next();
   constexpr int rank_shift = 27;
   static_assert(Graph::max_rank <= (1 << (32 - rank_shift)));
+  std::vector<int32_t> number; // empty: an edge is its own number
+  if (!count_all) {
+    const auto joins = [&](int32_t e) {
+      const auto [u, v] = g.ends(e);
+      return u != v;
+    };
+    const auto at = chunk_offsets(g.num_edges, [&](int32_t begin, int32_t end) {
+      int32_t count = 0;
+      for (int32_t e = begin; e < end; ++e) count += joins(e);
+      return count;
+    });
+    if (size_t(at.back()) < m) {
+      number.resize(m);
+      for_chunks(g.num_edges, [&](int32_t c, int32_t begin, int32_t end) {
+        for (int32_t e = begin, next = at[size_t(c)]; e < end; ++e) number[size_t(e)] = joins(e) ? next++ : -1;
+      });
+    }
+  }
   const auto key = [&](int32_t e) {
-    const uint32_t random = uint32_t(Random(salt ^ (uint64_t(e) * 0xd1b54a32d192ed03ULL)).next() >> 32);
+    const uint64_t n = uint64_t(number.empty() ? e : number[size_t(e)]);
+    const uint32_t random = uint32_t(Random(salt ^ (n * 0xd1b54a32d192ed03ULL)).next() >> 32);
     return ranked ? uint32_t(g.rank[size_t(e)]) << rank_shift | random >> (32 - rank_shift) : random;
   };
-  std::vector<int32_t> forest, label;
-  forest.reserve(size_t(g.num_nodes));
+  std::vector<uint8_t> in_forest(m, 0);
+  std::vector<int32_t> label;
   const GraphEdges<decltype(key)> edges{g, key};
-  int32_t trees = boruvka_round(g.num_nodes, edges, label, forest);
+  int32_t trees = boruvka_round(g.num_nodes, edges, label, in_forest);
   std::vector<TreeEdge> left = edges_between_trees(edges, label);
-  edges_read();
   while (!left.empty()) {
     const TreeEdges<decltype(key)> between{left, key};
-    trees = boruvka_round(trees, between, label, forest);
-    left = edges_between_trees(between, label);
+    trees = boruvka_round(trees, between, label, in_forest);
+    keep_edges_between_trees(left, label);
   }
-  return forest;
+  return in_forest;
 }
 
 // Nodes in a rotated order starting at a random node: the first node of each component
@@ -261,7 +298,7 @@ struct RotatedNodes {
   int32_t operator[](int32_t i) const { return i + offset < n ? i + offset : i + offset - n; }
 };
 
-std::vector<int32_t> breadth_first(const Graph& g, Random& rng) {
+std::vector<int32_t> breadth_first(const EdgeTable& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
   const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
@@ -286,7 +323,7 @@ std::vector<int32_t> breadth_first(const Graph& g, Random& rng) {
   return forest;
 }
 
-std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
+std::vector<int32_t> depth_first(const EdgeTable& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
   const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
@@ -321,7 +358,7 @@ std::vector<int32_t> depth_first(const Graph& g, Random& rng) {
 
 // Wilson's algorithm: loop-erased random walks from each node until they hit the tree.
 // The walk remembers only the last edge it left each node by, which erases loops.
-std::vector<int32_t> wilson(const Graph& g, Random& rng) {
+std::vector<int32_t> wilson(const EdgeTable& g, Random& rng) {
   const Adjacency a = build_adjacency(g);
   // Each component needs a root before walks start, or a walk in it would never end;
   // which node does not change the distribution of the tree. Components by union-find
@@ -330,7 +367,8 @@ std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   std::vector<uint8_t> in_tree(size_t(g.num_nodes), 0);
   {
     UnionFind components(g.num_nodes);
-    for (const auto& [u, v] : g.edges) components.unite(u, v);
+    for (int32_t e = 0; e < g.num_edges; ++e)
+      if (const auto [u, v] = g.ends(e); u != v) components.unite(u, v);
     std::vector<uint8_t> rooted(size_t(g.num_nodes), 0);
     for (int32_t i = 0; i < g.num_nodes; ++i) {
       const int32_t c = components.find(nodes[i]);
@@ -355,29 +393,28 @@ std::vector<int32_t> wilson(const Graph& g, Random& rng) {
   return forest;
 }
 
-// spanning_forest, calling `edges_read()` once graph.edges are no longer read.
-std::vector<int32_t> forest_of(const Graph& graph, TreeStrategy strategy, uint64_t seed,
-                               const std::function<void()>& edges_read) {
-  const size_t m = graph.edges.size();
-  Random rng(seed);
-  std::vector<int32_t> forest;
-  switch (strategy) {
-  case TreeStrategy::random: forest = minimum_forest(graph, seed, false, edges_read); break;
-  case TreeStrategy::shaped: forest = minimum_forest(graph, seed, true, edges_read); break;
-  case TreeStrategy::uniform: forest = wilson(graph, rng); break;
-  case TreeStrategy::bfs: forest = breadth_first(graph, rng); break;
-  case TreeStrategy::dfs: forest = depth_first(graph, rng); break;
-  }
+// spanning_forest; `count_all` as for minimum_forest.
+std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed, bool count_all) {
+  const size_t m = size_t(graph.num_edges);
   // Increasing order through a mark per edge: linear, unlike sorting, and parallel (each
-  // edge is marked once).
-  std::vector<uint8_t> in_forest(m, 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i) in_forest[size_t(forest[i])] = 1;
-  });
+  // edge is marked once). The minimum forest marks its edges as it finds them.
+  std::vector<uint8_t> in_forest;
+  if (strategy == TreeStrategy::random || strategy == TreeStrategy::shaped) {
+    in_forest = minimum_forest(graph, seed, strategy == TreeStrategy::shaped, count_all);
+  } else {
+    Random rng(seed);
+    const std::vector<int32_t> forest = strategy == TreeStrategy::uniform ? wilson(graph, rng)
+                                        : strategy == TreeStrategy::bfs   ? breadth_first(graph, rng)
+                                                                          : depth_first(graph, rng);
+    in_forest.assign(m, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) in_forest[size_t(forest[i])] = 1;
+    });
+  }
   const auto at = chunk_offsets(int32_t(m), [&](int32_t begin, int32_t end) {
     return int32_t(std::count(in_forest.begin() + begin, in_forest.begin() + end, 1));
   });
-  forest.resize(size_t(at.back()));
+  std::vector<int32_t> forest(size_t(at.back()));
   for_chunks(int32_t(m), [&](int32_t c, int32_t begin, int32_t end) {
     for (int32_t e = begin, next = at[size_t(c)]; e < end; ++e)
       if (in_forest[size_t(e)]) forest[size_t(next++)] = e;
@@ -387,15 +424,17 @@ std::vector<int32_t> forest_of(const Graph& graph, TreeStrategy strategy, uint64
 
 } // namespace
 
-std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {
-  return forest_of(graph, strategy, seed, [] {});
+std::vector<int32_t> spanning_forest(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed) {
+  return forest_of(graph, strategy, seed, false);
 }
 
-std::vector<int32_t> spanning_forest(Graph&& graph, TreeStrategy strategy, uint64_t seed) {
-  std::vector<int32_t> forest =
-      forest_of(graph, strategy, seed, [&] { std::vector<std::array<int32_t, 2>>().swap(graph.edges); });
-  graph = Graph();
-  return forest;
+std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {
+  static_assert(sizeof(std::array<int32_t, 2>) == 2 * sizeof(int32_t), "the edges must be rows of two");
+  return forest_of(EdgeTable{.num_nodes = graph.num_nodes,
+                             .num_edges = int32_t(graph.edges.size()),
+                             .rows = graph.edges.empty() ? nullptr : graph.edges[0].data(),
+                             .rank = graph.rank},
+                   strategy, seed, true);
 }
 
 } // namespace meander

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <numeric>
 
@@ -126,15 +127,39 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
   EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
 }
 
-// Handing the graph over gives the same forest and leaves the graph empty.
-TEST(SpanningTree, ConsumingOverloadMatchesAndReleases) {
+// A graph read in place from wider rows, with a bias, absent edges and a self loop, gives
+// the forest of the Graph of its edges that join two nodes, whatever the strategy.
+TEST(SpanningTree, EdgeTableGivesTheForestOfItsJoiningEdges) {
   const Graph g = grid_and_triangle(30, 20);
-  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs, TreeStrategy::shaped}) {
-    SCOPED_TRACE(std::string(to_string(s)));
-    Graph copy = g;
-    EXPECT_EQ(spanning_forest(std::move(copy), s, 5), spanning_forest(g, s, 5));
-    EXPECT_TRUE(copy.edges.empty()); // NOLINT(bugprone-use-after-move): checking the release
+  constexpr int32_t bias = 7;
+  std::vector<std::array<int32_t, 4>> rows;
+  std::vector<uint8_t> rank;
+  Graph joining{.num_nodes = g.num_nodes, .edges = {}, .rank = {}};
+  std::vector<int32_t> row_of_joining;
+  for (size_t e = 0; e < g.edges.size(); ++e) {
+    const auto [u, v] = g.edges[e];
+    const uint8_t r = uint8_t((e * 7919) % 5);
+    rows.push_back({-5, v + bias, 99, u + bias});
+    rank.push_back(r);
+    if (u != v) {
+      joining.edges.push_back(g.edges[e]);
+      joining.rank.push_back(r);
+      row_of_joining.push_back(int32_t(rows.size()) - 1);
+    }
+    if (e % 3 == 0) { // an absent edge
+      rows.push_back({0, e % 2 ? -1 : u + bias, 0, e % 2 ? v + bias : -1});
+      rank.push_back(uint8_t(e % 7));
+    }
   }
+  const EdgeTable table{.num_nodes = g.num_nodes, .num_edges = int32_t(rows.size()), .rows = rows[0].data(),
+                        .stride = 4, .first = 3, .second = 1, .bias = bias, .rank = rank};
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::shaped, TreeStrategy::uniform, TreeStrategy::bfs, TreeStrategy::dfs}) {
+    SCOPED_TRACE(std::string(to_string(s)));
+    std::vector<int32_t> expected;
+    for (int32_t e : spanning_forest(joining, s, 5)) expected.push_back(row_of_joining[size_t(e)]);
+    EXPECT_EQ(spanning_forest(table, s, 5), expected);
+  }
+  expect_spanning_forest(joining, spanning_forest(joining, TreeStrategy::random, 5), 2);
 }
 
 // Kruskal by rank gives a minimum spanning forest for the ranks as weights; within a rank
