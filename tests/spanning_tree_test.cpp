@@ -127,6 +127,34 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
   EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
 }
 
+// The minimum forests depend on the edges' ids and ranks, not on how the nodes are
+// numbered: a grid whose edges come in its nodes' order and the same grid with its nodes
+// scattered (most lowerings then go through the second pass of the rounds, past the
+// share a chunk keeps aside) give the same forest.
+TEST(SpanningTree, MinimumForestIgnoresTheNodesNumbering) {
+  const int32_t w = 1024, h = 600;
+  Graph g = grid_and_triangle(w, h);
+  for (size_t e = 0; e < g.edges.size(); ++e) g.rank.push_back(uint8_t((e * 7919) % 13 % 4));
+  std::vector<int32_t> scattered(size_t(g.num_nodes));
+  std::iota(scattered.begin(), scattered.end(), 0);
+  uint64_t state = 12345;
+  for (size_t i = scattered.size() - 1; i > 0; --i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    std::swap(scattered[i], scattered[size_t((state >> 33) % (i + 1))]);
+  }
+  Graph renumbered = g;
+  for (auto& [u, v] : renumbered.edges) {
+    u = scattered[size_t(u)];
+    v = scattered[size_t(v)];
+  }
+  for (TreeStrategy s : {TreeStrategy::random, TreeStrategy::shaped})
+    for (uint64_t seed : {1, 2}) {
+      const std::vector<int32_t> forest = spanning_forest(g, s, seed);
+      EXPECT_EQ(forest.size(), size_t(g.num_nodes - 2)); // grid and triangle: two trees
+      EXPECT_EQ(spanning_forest(renumbered, s, seed), forest) << to_string(s) << " seed " << seed;
+    }
+}
+
 // A graph read in place from wider rows, with a bias, absent edges and a self loop, gives
 // the forest of the Graph of its edges that join two nodes, whatever the strategy.
 TEST(SpanningTree, EdgeTableGivesTheForestOfItsJoiningEdges) {
