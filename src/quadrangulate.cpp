@@ -108,11 +108,13 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
 
   // 3. The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
   // is shared by the quads of h and next(h); each quad side is written by one corner, and
-  // the sides no corner writes (a half quad's 0 and 1) stay -1.
+  // the sides no corner writes (a half quad's 0 and 1) stay -1. Faces of one size are
+  // found without face_start, which is released by then.
   q.neighbors.assign(size_t(ne), {-1, -1, -1, -1});
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
     for (int32_t f = faces.begin(); f < faces.end(); ++f) {
-      const int32_t first = mesh.face_start[f], last = mesh.face_start[f + 1];
+      const int32_t first = c.face_size > 0 ? f * c.face_size : mesh.face_start[f];
+      const int32_t last = c.face_size > 0 ? first + c.face_size : mesh.face_start[f + 1];
       for (int32_t h = first; h < last; ++h) {
         const int32_t g = h + 1 == last ? first : h + 1;
         const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
@@ -142,6 +144,7 @@ QuadMesh dual_simplest(PolygonMesh&& mesh, Connectivity&& c) {
       std::vector<int32_t>().swap(c.edge_start);
     } else { // the face points are placed: faces are only walked round from here on
       std::vector<int32_t>().swap(mesh.face_vertices);
+      if (c.face_size > 0) std::vector<int32_t>().swap(mesh.face_start);
     }
   });
   mesh = PolygonMesh();
