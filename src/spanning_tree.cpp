@@ -172,18 +172,26 @@ int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label
     const auto [u, v] = edges.ends(place_of(lightest[size_t(x)]));
     return u == x ? v : u;
   };
+  // In one pass: each node's parent; the edge of each node that is not a root marked (an
+  // edge added is the lightest of exactly one such node, so it is marked once); the roots
+  // counted by chunk, to be numbered in node order (the halving below keeps them).
   std::vector<int32_t> parent(static_cast<size_t>(n));
-  tbb::parallel_for(nodes, [&](const auto& range) {
-    for (int32_t x = range.begin(); x < range.end(); ++x) {
+  std::array<int32_t, kChunks + 1> first_tree{};
+  for_chunks(n, [&](int32_t c, int32_t begin, int32_t end) {
+    int32_t roots = 0;
+    for (int32_t x = begin; x < end; ++x) {
       const int32_t y = other_end(x);
-      parent[size_t(x)] = y != x && other_end(y) == x && x < y ? x : y;
+      if (y == x || (x < y && other_end(y) == x)) {
+        parent[size_t(x)] = x;
+        ++roots;
+      } else {
+        parent[size_t(x)] = y;
+        in_forest[size_t(edges.id(place_of(lightest[size_t(x)])))] = 1;
+      }
     }
+    first_tree[size_t(c) + 1] = roots;
   });
-  // Each edge added is the lightest of exactly one node that is not a root: marked once.
-  tbb::parallel_for(nodes, [&](const auto& range) {
-    for (int32_t x = range.begin(); x < range.end(); ++x)
-      if (parent[size_t(x)] != x) in_forest[size_t(edges.id(place_of(lightest[size_t(x)])))] = 1;
-  });
+  for (int32_t c = 0; c < kChunks; ++c) first_tree[size_t(c) + 1] += first_tree[size_t(c)];
   std::vector<Weight>().swap(lightest);
   // Each node to its root, halving the path as it goes (another thread only ever sees a
   // parent move up towards the same root). Along a path the lightest edges' weights
@@ -201,11 +209,6 @@ int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label
     }
   });
   // The roots numbered in node order, then every node labelled by its root.
-  const auto first_tree = chunk_offsets(n, [&](int32_t begin, int32_t end) {
-    int32_t roots = 0;
-    for (int32_t x = begin; x < end; ++x) roots += parent[size_t(x)] == x;
-    return roots;
-  });
   label.resize(size_t(n));
   for_chunks(n, [&](int32_t c, int32_t begin, int32_t end) {
     int32_t tree = first_tree[size_t(c)];
