@@ -12,12 +12,15 @@ namespace meander {
 
 constexpr int32_t kChunks = 64;
 
+// Where chunk c of items [0, count) begins (count for c = kChunks and for chunks past
+// the end).
+inline int32_t chunk_begin(int32_t count, int32_t c) { return std::min(count, c * ((count + kChunks - 1) / kChunks)); }
+
 // Runs body(chunk, begin, end) over items [0, count) cut into kChunks ranges, in
 // parallel; ranges past the end are empty.
 template <typename Body>
 void for_chunks(int32_t count, Body&& body) {
-  const int32_t chunk = (count + kChunks - 1) / kChunks;
-  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, std::min(count, c * chunk), std::min(count, (c + 1) * chunk)); });
+  tbb::parallel_for(0, kChunks, [&](int32_t c) { body(c, chunk_begin(count, c), chunk_begin(count, c + 1)); });
 }
 
 // Where each chunk's output starts, when counted(begin, end) is the number of outputs of

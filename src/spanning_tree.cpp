@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -191,7 +192,7 @@ int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label
     }
     first_tree[size_t(c) + 1] = roots;
   });
-  for (int32_t c = 0; c < kChunks; ++c) first_tree[size_t(c) + 1] += first_tree[size_t(c)];
+  std::partial_sum(first_tree.begin(), first_tree.end(), first_tree.begin());
   std::vector<Weight>().swap(lightest);
   // Each node to its root, halving the path as it goes (another thread only ever sees a
   // parent move up towards the same root). Along a path the lightest edges' weights
@@ -261,10 +262,9 @@ void keep_edges_between_trees(std::vector<TreeEdge>& edges, const std::vector<in
     }
     kept[size_t(c) + 1] = next - begin;
   });
-  const int32_t chunk = (int32_t(edges.size()) + kChunks - 1) / kChunks;
   size_t size = 0;
   for (int32_t c = 0; c < kChunks; ++c) {
-    const auto from = edges.begin() + std::min(ptrdiff_t(c) * chunk, ptrdiff_t(edges.size()));
+    const auto from = edges.begin() + chunk_begin(int32_t(edges.size()), c);
     std::move(from, from + kept[size_t(c) + 1], edges.begin() + ptrdiff_t(size));
     size += size_t(kept[size_t(c) + 1]);
   }
