@@ -16,9 +16,12 @@
 // fault costs ~20 us: reading the 70k-triangle bunny and building its connectivity took
 // 22 ms when done repeatedly in one process (the benchmarks, the studio's server), 14 of
 // them in the faults of the heap that glibc had trimmed after the previous mesh. So freed
-// memory below 64 MiB stays with the process, and blocks under 32 MiB come from the heap
+// memory below 256 MiB stays with the process, and blocks under 32 MiB come from the heap
 // (glibc's default policy moves towards these values itself, but only after a large
-// block was freed, and trims to twice the largest one freed).
+// block was freed, and trims to twice the largest one freed). The heap holds every
+// array of a mesh up to about 2.7M triangles, several at once: a 1M-triangle mesh read
+// and connected takes 67 MiB of it, and with 64 MiB kept glibc gave that back after each
+// mesh, 180,000 page faults in a benchmark loop where 6,700 remain now (docs/benchmarks.md).
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -36,7 +39,7 @@ constexpr size_t kPrefaultedBlock = size_t(64) << 20;
 constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
 constexpr uintptr_t kPage = 4096;
 constexpr int kHeapBlockLimit = 32 << 20;
-constexpr int kKeptFreeMemory = 64 << 20;
+constexpr int kKeptFreeMemory = 256 << 20;
 
 const bool kKeepFreedMemory = [] {
   mallopt(M_MMAP_THRESHOLD, kHeapBlockLimit);
