@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <functional>
 #include <limits>
 
 namespace meander {
@@ -221,6 +222,50 @@ TEST(IoPly, ReadsTriangleStrips) {
                             "0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 7\n";
   EXPECT_EQ(test::message_of<InputError>([&] { read_text("strip_index.ply", ascii); }),
             (test::output_dir() / "strip_index.ply").string() + ":15: tristrips 0: vertex index 7 out of range (0..3)");
+}
+
+// Binary faces all of one size are checked and copied in parallel chunks, and any other
+// mix is read one face after another: both must give the faces as written, and the first
+// bad face must be the one named. Enough faces that every chunk has some.
+TEST(IoPly, FacesOfOneSizeOrMixedReadTheSame) {
+  constexpr int32_t faces = 1000;
+  const auto file = [&](const std::string& name, auto&& size_of, int32_t bad_face, int32_t bad_index) {
+    std::string body = little_floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+    std::vector<int32_t> expected;
+    for (int32_t f = 0; f < faces; ++f) {
+      const int size = size_of(f);
+      body += little(uint8_t(size));
+      for (int k = 0; k < size; ++k) {
+        const int32_t v = f == bad_face && k == 1 ? bad_index : (f + k) % 4;
+        body += little(v);
+        expected.push_back(v);
+      }
+    }
+    const std::string header = ply_header(
+        "binary_little_endian", "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                                    std::to_string(faces) + "\nproperty list uchar int vertex_indices\n");
+    return std::pair{test::write_file(name, header + body), expected};
+  };
+  const auto triangles = [](int32_t) { return 3; };
+  const auto quads = [](int32_t) { return 4; };
+  const auto last_quad = [](int32_t f) { return f == faces - 1 ? 4 : 3; };
+  const auto alternating = [](int32_t f) { return 3 + f % 2; };
+  for (const auto& [name, sizes] : std::vector<std::pair<std::string, std::function<int(int32_t)>>>{
+           {"triangles.ply", triangles}, {"quads.ply", quads}, {"last_quad.ply", last_quad}, {"alternating.ply", alternating}}) {
+    const auto [path, expected] = file(name, sizes, -1, 0);
+    const PolygonMesh m = read_mesh(path);
+    ASSERT_EQ(m.num_faces(), faces) << name;
+    EXPECT_EQ(faces_of(m), expected) << name;
+    for (int32_t f = 0; f < faces; ++f) ASSERT_EQ(m.face_size(f), sizes(f)) << name << " face " << f;
+    const auto [bad_path, unused] = file("bad_" + name, sizes, 777, 9);
+    EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(bad_path); }),
+              bad_path.string() + ": face 777: vertex index 9 out of range (0..3)")
+        << name;
+  }
+  // A face too small after faces of one size: the faces are read one by one, which names it.
+  const auto [small_path, unused] = file("small_face.ply", [](int32_t f) { return f == 500 ? 2 : 3; }, -1, 0);
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(small_path); }),
+            small_path.string() + ": face 500: face with 2 vertices (at least 3 needed)");
 }
 
 // The face element may come before the vertex element.

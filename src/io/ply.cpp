@@ -3,8 +3,10 @@
 #include "io/formats.h"
 #include "io/reader_support.h"
 #include "io/text_cursor.h"
+#include "chunks.h"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -318,8 +320,10 @@ private:
     }
     const size_t stride = fixed_record_size(e);
     positions.resize(e.count);
-    if (stride == sizeof(Vec3) && offset[0] == 0 && offset[1] == 4 && offset[2] == 8) {
-      if (!positions.empty()) std::memcpy(positions.data(), p_, e.count * sizeof(Vec3));
+    if (stride == sizeof(Vec3) && offset[0] == 0 && offset[1] == 4 && offset[2] == 8 && e.count <= INT32_MAX) {
+      for_chunks(int32_t(e.count), [&](int32_t, int32_t begin, int32_t end) {
+        if (end > begin) std::memcpy(&positions[size_t(begin)], p_ + size_t(begin) * stride, size_t(end - begin) * stride);
+      });
     } else {
       for (size_t i = 0; i < e.count; ++i) {
         const char* record = p_ + i * stride;
@@ -336,12 +340,68 @@ private:
     return true;
   }
   // Faces whose one property is a list of int or uint indices with a uchar length:
-  // what nearly every writer produces. A first pass finds the sizes and checks the
-  // bounds, so the corners are allocated once and copied in the second.
+  // what nearly every writer produces. Faces all of one size (a triangle or quad mesh)
+  // have records of one length, which are checked and copied in parallel; otherwise a
+  // first pass finds the sizes and checks the bounds, so the corners are allocated once
+  // and copied in the second.
   bool read_byte_counted_faces(const Element& e, int64_t index_limit, PolygonMesh& mesh) {
     if (e.properties.size() != 1) return false;
     const Property& list = e.properties[0];
     if (list.count_type != Scalar::uint8 || (list.type != Scalar::int32 && list.type != Scalar::uint32)) return false;
+    if (!read_same_size_faces(e, mesh)) read_any_size_faces(e, mesh);
+    // A uint index above INT32_MAX reads as negative, which the unsigned comparison
+    // catches too.
+    const auto out_of_range = [&](int32_t v) { return uint32_t(v) >= uint64_t(index_limit); };
+    const std::span<const int32_t> corners = mesh.face_vertices;
+    bool bad = false;
+    for_chunks(int32_t(corners.size()), [&](int32_t, int32_t begin, int32_t end) {
+      bool here = false; // one branch-free sweep a chunk
+      for (int32_t c = begin; c < end; ++c) here |= out_of_range(corners[size_t(c)]);
+      if (here) std::atomic_ref<bool>(bad).store(true, std::memory_order_relaxed);
+    });
+    if (bad) {
+      for (size_t c = 0;; ++c)
+        if (const int32_t v = corners[c]; out_of_range(v)) {
+          const auto f = std::upper_bound(mesh.face_start.begin(), mesh.face_start.end(), int32_t(c)) - 1;
+          begin(e, uint64_t(f - mesh.face_start.begin()));
+          fail(index_out_of_range(list.type == Scalar::uint32 ? int64_t(uint32_t(v)) : int64_t(v), index_limit));
+        }
+    }
+    return true;
+  }
+  // The parallel case: false, having read nothing, unless every record has the first
+  // one's size (at least 3) and the body holds them all.
+  bool read_same_size_faces(const Element& e, PolygonMesh& mesh) {
+    if (e.count == 0 || p_ == end_) return false;
+    const size_t size = static_cast<unsigned char>(*p_);
+    const size_t record = 1 + 4 * size;
+    if (size < 3 || e.count > bytes_left() / record || !too_many(e.count * size, "face corners").empty()) return false;
+    const int32_t faces = int32_t(e.count);
+    bool mixed = false;
+    for_chunks(faces, [&](int32_t, int32_t begin, int32_t end) {
+      bool here = false;
+      for (int32_t f = begin; f < end; ++f) here |= static_cast<unsigned char>(p_[size_t(f) * record]) != size;
+      if (here) std::atomic_ref<bool>(mixed).store(true, std::memory_order_relaxed);
+    });
+    if (mixed) return false;
+    mesh.face_start.resize(e.count + 1);
+    mesh.face_vertices.resize(e.count * size);
+    for_chunks(faces, [&](int32_t, int32_t begin, int32_t end) {
+      for (int32_t f = begin; f < end; ++f) {
+        // A constant size lets the compiler copy a triangle in two moves instead of a loop.
+        int32_t* out = mesh.face_vertices.data() + size_t(f) * size;
+        const char* in = p_ + size_t(f) * record + 1;
+        if (size == 3)
+          std::memcpy(out, in, 12);
+        else
+          std::memcpy(out, in, 4 * size);
+        mesh.face_start[size_t(f) + 1] = int32_t(size_t(f + 1) * size);
+      }
+    });
+    p_ += e.count * record;
+    return true;
+  }
+  void read_any_size_faces(const Element& e, PolygonMesh& mesh) {
     size_t corners = 0;
     const char* q = p_;
     for (uint64_t f = 0; f < e.count; ++f) {
@@ -359,28 +419,11 @@ private:
     int32_t* out = mesh.face_vertices.data();
     for (size_t f = 0; f < e.count; ++f) {
       const size_t size = static_cast<unsigned char>(*p_);
-      // A constant size lets the compiler copy a triangle in two moves instead of a loop.
-      if (size == 3)
-        std::memcpy(out, p_ + 1, 12);
-      else
-        std::memcpy(out, p_ + 1, 4 * size);
+      std::memcpy(out, p_ + 1, 4 * size);
       p_ += 1 + 4 * size;
       out += size;
       mesh.face_start[f + 1] = int32_t(out - mesh.face_vertices.data());
     }
-    // One branch-free sweep; a uint index above INT32_MAX reads as negative, which the
-    // unsigned comparison catches too.
-    bool bad = false;
-    for (int32_t v : mesh.face_vertices) bad |= uint32_t(v) >= uint64_t(index_limit);
-    if (bad) {
-      for (size_t c = 0;; ++c)
-        if (const int32_t v = mesh.face_vertices[c]; uint32_t(v) >= uint64_t(index_limit)) {
-          const auto f = std::upper_bound(mesh.face_start.begin(), mesh.face_start.end(), int32_t(c)) - 1;
-          begin(e, uint64_t(f - mesh.face_start.begin()));
-          fail(index_out_of_range(list.type == Scalar::uint32 ? int64_t(uint32_t(v)) : int64_t(v), index_limit));
-        }
-    }
-    return true;
   }
   bool skip_fixed_size(const Element& e) {
     if (e.has_lists()) return false;
