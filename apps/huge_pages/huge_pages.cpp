@@ -23,6 +23,7 @@
 // and connected takes 67 MiB of it, and with 64 MiB kept glibc gave that back after each
 // mesh, 180,000 page faults in a benchmark loop where 6,700 remain now (docs/benchmarks.md).
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
@@ -35,8 +36,8 @@
 namespace {
 
 constexpr size_t kLargeBlock = size_t(4) << 20;
-constexpr size_t kPrefaultedBlock = size_t(64) << 20;
 constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
+constexpr uintptr_t kPrefaultStep = 2 * kHugePage;
 constexpr uintptr_t kPage = 4096;
 constexpr int kHeapBlockLimit = 32 << 20;
 constexpr int kKeptFreeMemory = 256 << 20;
@@ -47,26 +48,36 @@ const bool kKeepFreedMemory = [] {
   return true;
 }();
 
-// Faults a block's pages in on two threads, half each, before the caller's first write.
+// Faults a block's pages in on two threads before the caller's first write.
 // std::vector zeroes what it allocates on one thread, and on this project's virtual
 // machines a fresh page can cost more than zeroing it: its host backs it only when it
 // is first touched (after the guest has reported it free), measured at up to 2.3 s/GiB
 // for huge pages. On two threads the 10M-triangle curve's check and quadrangulate took
-// about 0.5 s less each in that state (docs/benchmarks.md). The block is taken whole, so
-// a vector's capacity beyond its size is resident too (the duotone of a 1M-triangle
+// about 0.5 s less each in that state (docs/benchmarks.md). Every large block is
+// faulted so, not only those of 64 MiB and more as before: `perf` then found the run's
+// remaining one-core stretches (0.1 s each) in the zeroing of blocks of 19 to 57 MiB. And
+// the threads take steps of two huge pages in turn rather than half the block each:
+// some pages are still backed and cost nothing, and a thread left with the other half's
+// fresh ones faulted alone while the other waited. The block is taken whole, so a
+// vector's capacity beyond its size is resident too (the duotone of a 1M-triangle
 // sphere: 89 MB more at its peak, 6.5 %). Advice only: a kernel without
 // MADV_POPULATE_WRITE (before 5.14) leaves the pages to the first write.
 void prefault(uintptr_t begin, uintptr_t end) {
-  const auto populate = [](uintptr_t from, uintptr_t to) {
-    if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+  const uintptr_t first = begin & ~(kPrefaultStep - 1);
+  std::atomic<uintptr_t> next{0};
+  const auto populate = [&] {
+    for (uintptr_t step; first + (step = next.fetch_add(1, std::memory_order_relaxed)) * kPrefaultStep < end;) {
+      const uintptr_t from = std::max(begin, first + step * kPrefaultStep);
+      const uintptr_t to = std::min(end, first + (step + 1) * kPrefaultStep);
+      madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+    }
   };
-  const uintptr_t middle = std::max(begin, (begin + (end - begin) / 2) & ~(kHugePage - 1));
   try {
-    std::thread other(populate, middle, end);
-    populate(begin, middle);
+    std::thread other(populate);
+    populate();
     other.join();
   } catch (const std::system_error&) { // no thread to be had: all on this one
-    populate(begin, end);
+    populate();
   }
 }
 
@@ -78,8 +89,10 @@ void* allocate(size_t size) {
     const uintptr_t begin = (reinterpret_cast<uintptr_t>(block) + kPage - 1) & ~(kPage - 1);
     const uintptr_t end = (reinterpret_cast<uintptr_t>(block) + size) & ~(kPage - 1);
     // Advice only: where the kernel refuses, the block keeps small pages.
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-    if (size >= kPrefaultedBlock && end > begin) prefault(begin, end);
+    if (end > begin) {
+      madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+      prefault(begin, end);
+    }
   }
   return block;
 }
