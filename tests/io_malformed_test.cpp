@@ -360,5 +360,55 @@ TEST(IoOffLarge, AnErrorIsReportedOnItsLineAndTheVerticesComeFirst) {
   EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(both); }), both.string() + ":70000: bad vertex coordinate 'zero'");
 }
 
+// Large OFF files are read in chunks cut at line starts, on all cores. Line ends of any
+// kind (here classic Mac OS lone CRs), comment and blank lines, extra columns after a
+// vertex's coordinates and a face's indices must give the mesh as written; and a file
+// with an element too many or too few is still refused with the serial reader's message
+// and line.
+TEST(IoOffLarge, ChunksGiveTheMeshAsWrittenWhateverTheLineEnds) {
+  constexpr int32_t n = 200;
+  std::vector<Vec3> positions;
+  std::vector<int32_t> corners;
+  const auto text = [&](const std::string& eol, int32_t faces, const std::string& after) {
+    std::string t = "COFF" + eol + "# made by a test" + eol + std::to_string(n * n) + " " + std::to_string(faces) + " 0" + eol;
+    positions.clear();
+    corners.clear();
+    for (int32_t i = 0; i < n * n; ++i) {
+      if (i % 1000 == 0) t += " \t" + eol + "# between vertices" + eol;
+      positions.push_back({float(i % n) * 0.5f, float(i / n) * 0.25f, float(i % 7)});
+      t += std::to_string(float(i % n) * 0.5f) + " " + std::to_string(float(i / n) * 0.25f) + " " + std::to_string(i % 7) +
+           " 0.5 0.5 0.5 1" + eol;
+    }
+    for (int32_t f = 0; f < faces; ++f) {
+      const int32_t v = (f / (n - 1)) * n + f % (n - 1);
+      const int32_t face[] = {v, v + 1, v + n + 1};
+      corners.insert(corners.end(), std::begin(face), std::end(face));
+      t += "3 " + std::to_string(v) + " " + std::to_string(v + 1) + " " + std::to_string(v + n + 1) + " 255 0 0" + eol;
+    }
+    return t + after;
+  };
+  const int32_t faces = (n - 1) * (n - 1);
+  for (const std::string eol : {"\r", "\r\n", "\n"}) {
+    const std::string whole = text(eol, faces, "");
+    ASSERT_GT(whole.size(), size_t(1) << 20);
+    const PolygonMesh m = read_mesh(test::write_file("chunks.off", whole));
+    EXPECT_EQ(m.positions, positions);
+    EXPECT_EQ(m.face_vertices, corners);
+    ASSERT_EQ(m.num_faces(), faces);
+    EXPECT_EQ(m.face_start.back(), 3 * faces);
+  }
+  // Lines: 3 of header, 2 for each of the 40 comments, 40000 vertices, then the faces.
+  const int64_t first_face_line = 3 + 2 * 40 + n * n + 1;
+  const std::filesystem::path extra = test::write_file("chunks_extra.off", text("\n", faces, "extra\n"));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(extra); }),
+            extra.string() + ":" + std::to_string(first_face_line + faces) + ": unexpected 'extra' after the last face");
+  std::string short_text = text("\n", faces, "");
+  short_text.resize(short_text.rfind("3 ", short_text.size() - 2)); // the last face gone
+  const std::filesystem::path missing = test::write_file("chunks_missing.off", short_text);
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(missing); }),
+            missing.string() + ":" + std::to_string(first_face_line + faces - 2) + ": expected " +
+                std::to_string(faces) + " faces but the file ends after " + std::to_string(faces - 1));
+}
+
 } // namespace
 } // namespace meander
