@@ -636,11 +636,11 @@ RepairResult repair(const PolygonMesh& mesh, std::string_view name, const Repair
 
 namespace {
 
-// repair(), the mesh left in its order.
-RepairResult repair_in_order(PolygonMesh&& mesh, const std::string& prefix, const RepairOptions& options) {
+// repair(), the mesh left in its order: `m` is repaired in place and moved into the
+// result. Strict, it is left as it was when a problem is refused.
+RepairResult repair_in_order(PolygonMesh& m, const std::string& prefix, const RepairOptions& options) {
   const auto refuse = [&](const std::string& problem) { throw TopologyError(prefix + problem); };
-  RepairResult result{.mesh = std::move(mesh)};
-  PolygonMesh& m = result.mesh;
+  RepairResult result;
   std::vector<std::string>& repairs = result.repairs;
 
   // 1. What cannot be repaired.
@@ -780,6 +780,7 @@ RepairResult repair_in_order(PolygonMesh&& mesh, const std::string& prefix, cons
   // Reversed faces renumber their halfedges; otherwise the last connectivity built still
   // describes the result, and the pipeline need not build it again.
   if (!reoriented) result.connectivity = std::move(c);
+  result.mesh = std::move(m);
   return result;
 }
 
@@ -792,21 +793,28 @@ RepairResult repair(PolygonMesh&& mesh, std::string_view name, const RepairOptio
                      std::to_string(options.max_faces));
   const bool scattered = options.reorder && is_scattered(mesh);
   if (scattered && all_in_range(mesh.face_vertices, mesh.num_vertices())) {
-    // The input is kept until the reordered mesh proves to need nothing: otherwise it is
-    // repaired in its own order, so that every message names the input's elements. Strict,
-    // the attempt stops at the first problem instead of repairing what will be thrown away.
+    // The reordered mesh is tried first, strict, so that it stops at the first problem and
+    // leaves the mesh as it was: a mesh that needs anything is repaired in its own order,
+    // brought back from the reordered one, so that every message names the input's
+    // elements. The input is not kept beside it (209 MiB of the run's peak on 10M
+    // shuffled triangles).
+    const MeshOrder order = locality_order(mesh);
+    PolygonMesh local = reordered(mesh, order);
+    mesh = PolygonMesh();
     RepairOptions first_problem = options;
     first_problem.strict = true;
     try {
-      RepairResult result = repair_in_order(reordered(mesh, locality_order(mesh)), prefix, first_problem);
+      RepairResult result = repair_in_order(local, prefix, first_problem);
       if (result.notices.empty()) {
         result.reordered = true;
         return result;
       }
+      local = std::move(result.mesh);
     } catch (const Error&) {
     }
+    mesh = restored(local, order);
   }
-  RepairResult result = repair_in_order(std::move(mesh), prefix, options);
+  RepairResult result = repair_in_order(mesh, prefix, options);
   if (scattered) { // its messages are told: the rest can run in order
     result.mesh = reordered(result.mesh, locality_order(result.mesh));
     result.connectivity = Connectivity();

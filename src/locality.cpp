@@ -169,4 +169,8 @@ PolygonMesh reordered(const PolygonMesh& mesh, const MeshOrder& order) {
   return permuted(mesh, inverse(order.face_order), order.vertex_rank, inverse(order.vertex_rank));
 }
 
+PolygonMesh restored(const PolygonMesh& mesh, const MeshOrder& order) {
+  return permuted(mesh, order.face_order, inverse(order.vertex_rank), order.vertex_rank);
+}
+
 } // namespace meander

@@ -104,8 +104,28 @@ TEST(Locality, MixedFaceSizesKeepTheirCorners) {
   const PolygonMesh input = shuffled(mixed, 1);
   ASSERT_GE(input.num_faces(), 1 << 18);
   ASSERT_TRUE(is_scattered(input));
-  const PolygonMesh local = reordered(input, locality_order(input));
+  const MeshOrder order = locality_order(input);
+  const PolygonMesh local = reordered(input, order);
   EXPECT_EQ(faces_by_position(local), faces_by_position(input));
+  // Repair drops the input once reordered, and brings it back when it needs anything.
+  const PolygonMesh back = restored(local, order);
+  EXPECT_EQ(back.positions, input.positions);
+  EXPECT_EQ(back.face_start, input.face_start);
+  EXPECT_EQ(back.face_vertices, input.face_vertices);
+}
+
+// A scattered mesh that repair accepts with a notice (a Moebius band is not orientable) is
+// brought back to its own order, read as without reordering, then reordered.
+TEST(Locality, MeshWithANoticeIsBroughtBack) {
+  const PolygonMesh band = shuffled(moebius(300'000), 1);
+  ASSERT_TRUE(is_scattered(band));
+  const RepairResult plain = repair(PolygonMesh(band), "s.ply");
+  const RepairResult asked = repair(PolygonMesh(band), "s.ply", {.reorder = true});
+  ASSERT_EQ(plain.notices.size(), 1u);
+  EXPECT_EQ(asked.notices, plain.notices);
+  EXPECT_TRUE(asked.reordered);
+  EXPECT_EQ(faces_by_position(asked.mesh), faces_by_position(band));
+  EXPECT_EQ(asked.mesh.face_vertices, reordered(band, locality_order(band)).face_vertices);
 }
 
 TEST(Locality, RepairReordersOnlyWhenAsked) {

@@ -38,4 +38,7 @@ MeshOrder locality_order(const PolygonMesh& mesh);
 // The mesh in that order; each face keeps its first corner and its orientation.
 PolygonMesh reordered(const PolygonMesh& mesh, const MeshOrder& order);
 
+// The mesh that `reordered` was given, from what it returned and the same order.
+PolygonMesh restored(const PolygonMesh& mesh, const MeshOrder& order);
+
 } // namespace meander
