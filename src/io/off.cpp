@@ -41,10 +41,6 @@ int64_t read_count(TextCursor& in, std::string_view what, std::string_view thing
           std::to_string(found));
 }
 
-} // namespace
-
-namespace {
-
 struct Counts {
   int64_t vertices = 0, faces = 0;
 };
