@@ -410,5 +410,58 @@ TEST(IoOffLarge, ChunksGiveTheMeshAsWrittenWhateverTheLineEnds) {
                 std::to_string(faces) + " faces but the file ends after " + std::to_string(faces - 1));
 }
 
+// Large OBJ files are read in chunks too: negative indices count back from the vertices
+// defined before their line, whichever chunk those lie in, positive ones may point
+// forward, and the statements the mesh does not need are skipped. Errors come with the
+// serial reader's message and line.
+TEST(IoObjLarge, ChunksCountVerticesAcrossTheirBoundaries) {
+  constexpr int32_t rows = 400;
+  const auto text = [&](const std::string& eol, int32_t bad_row, const std::string& bad_face) {
+    std::string t = "# a grid of triangles, rows of vertices and faces interleaved" + eol + "o grid" + eol;
+    for (int32_t r = 0; r < rows; ++r) {
+      t += "vn 0 0 1" + eol;
+      for (int32_t i = 0; i < 100; ++i)
+        t += "v " + std::to_string(i) + " " + std::to_string(r) + " 0" + (i % 3 ? "" : " 1") + eol + "vt 0 0" + eol;
+      if (r == 0) continue;
+      // Negative: the previous row is -200..-101, this one -100..-1.
+      for (int32_t i = 0; i + 1 < 100; ++i) {
+        t += "f " + std::to_string(i - 200) + "/1/1 " + std::to_string(i - 199) + "//1 " + std::to_string(i - 100) + eol;
+        if (r == bad_row && i == 50) t += bad_face + eol;
+      }
+    }
+    // Forward and positive: a face naming the last vertex, written before a comment.
+    return t + "f 1 2 " + std::to_string(rows * 100) + eol + "# end" + eol;
+  };
+  for (const std::string eol : {"\n", "\r\n", "\r"}) {
+    const std::string whole = text(eol, -1, "");
+    ASSERT_GT(whole.size(), size_t(1) << 20);
+    const PolygonMesh m = read_mesh(test::write_file("chunks.obj", whole));
+    ASSERT_EQ(m.num_vertices(), rows * 100);
+    ASSERT_EQ(m.num_faces(), (rows - 1) * 99 + 1);
+    EXPECT_EQ(m.positions[size_t(37 * 100 + 5)], (Vec3{5, 37, 0}));
+    for (int32_t r = 1; r < rows; r += 37)
+      for (int32_t i = 0; i + 1 < 100; i += 13) {
+        const auto f = m.face((r - 1) * 99 + i);
+        EXPECT_EQ(std::vector<int32_t>(f.begin(), f.end()),
+                  (std::vector<int32_t>{(r - 1) * 100 + i, (r - 1) * 100 + i + 1, r * 100 + i}))
+            << "row " << r << " face " << i;
+      }
+    const auto last = m.face(m.num_faces() - 1);
+    EXPECT_EQ(std::vector<int32_t>(last.begin(), last.end()), (std::vector<int32_t>{0, 1, rows * 100 - 1}));
+  }
+  // Row 300's faces lie after 2 + 301 * 201 + 299 * 99 lines (its own vertices are
+  // written before them); the bad face follows face 50.
+  const int64_t bad_line = 2 + 301 * 201 + 299 * 99 + 51 + 1;
+  const std::filesystem::path back = test::write_file("chunks_back.obj", text("\n", 300, "f -1 -2 -30101"));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(back); }),
+            back.string() + ":" + std::to_string(bad_line) + ": face references vertex -30101 but only 30100 exist");
+  const std::filesystem::path two = test::write_file("chunks_two.obj", text("\n", 300, "f 1 2"));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(two); }),
+            two.string() + ":" + std::to_string(bad_line) + ": face with 2 vertices (at least 3 needed)");
+  const std::filesystem::path ahead = test::write_file("chunks_ahead.obj", text("\n", 300, "f 1 2 40001"));
+  EXPECT_EQ(test::message_of<InputError>([&] { read_mesh(ahead); }),
+            ahead.string() + ":" + std::to_string(bad_line) + ": face references vertex 40001 but only 40000 exist");
+}
+
 } // namespace
 } // namespace meander

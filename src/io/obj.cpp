@@ -1,11 +1,17 @@
 #include "io/formats.h"
 #include "io/obj_indices.h"
+#include "io/text_chunks.h"
 
 #include <algorithm>
+#include <optional>
+#include <vector>
 
 namespace meander::io {
 
-PolygonMesh read_obj(std::string_view bytes, std::string_view name) {
+namespace {
+
+// Element by element, failing at the first problem with its line.
+PolygonMesh read_serially(std::string_view bytes, std::string_view name) {
   TextCursor in(bytes, name);
   PolygonMesh mesh;
   ForwardIndices forward{"vertex"};
@@ -31,6 +37,60 @@ PolygonMesh read_obj(std::string_view bytes, std::string_view name) {
   forward.check(name, "face", int64_t(mesh.positions.size()));
   require_faces(mesh, name);
   return mesh;
+}
+
+// The file read in chunks (text_chunks.h): a first pass counts each chunk's vertex lines
+// (first word "v", as TextCursor::word reads it), so that the second knows how many
+// vertices come before each line, which negative indices count back from. Nothing when
+// a chunk fails, reads other vertices than the first pass counted, or holds an index
+// past the last vertex.
+std::optional<PolygonMesh> read_in_chunks(std::string_view bytes, std::string_view name) {
+  const char* const end = bytes.data() + bytes.size();
+  std::vector<TextChunk> chunks = cut_into_chunks(bytes, 0);
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for_each_line(chunks[c].text, end, [&](const char* first, const char* line_end) {
+      chunks[c].before += first != line_end && *first == 'v' &&
+                          (first + 1 == line_end || TextCursor::is_blank(first[1]) || first[1] == '\n');
+    });
+  });
+  int64_t vertices = 0;
+  if (!count_before(chunks, vertices) || vertices > max_count) return std::nullopt;
+  PolygonMesh mesh;
+  mesh.positions.resize(size_t(vertices));
+  std::vector<int64_t> largest(chunks.size(), 0);
+  read_chunks(chunks, name, [&](size_t c, TextChunk& k, TextCursor& in) {
+    ForwardIndices forward{"vertex"};
+    const int64_t last = c + 1 < chunks.size() ? chunks[c + 1].before : vertices;
+    int64_t defined = k.before;
+    while (!in.at_end()) {
+      if (!in.at_line_end()) {
+        const std::string_view keyword = in.word();
+        if (keyword == "v") {
+          if (defined == last) in.fail("a vertex the first pass did not count");
+          mesh.positions[size_t(defined++)] = read_point(in);
+        } else if (keyword == "f") {
+          const size_t first = k.corners.size();
+          while (!in.at_line_end())
+            k.corners.push_back(forward.resolve(in, in.integer("vertex index", '/'), "face", defined));
+          const size_t size = k.corners.size() - first;
+          if (size < 3) in.fail(too_few_vertices(int64_t(size)));
+          k.sizes.push_back(int32_t(size));
+        }
+      }
+      in.next_line();
+    }
+    if (defined != last) in.fail("vertices the first pass counted but did not find");
+    largest[c] = forward.largest;
+  });
+  if (std::any_of(largest.begin(), largest.end(), [&](int64_t index) { return index > vertices; })) return std::nullopt;
+  if (!join_faces(chunks, mesh, name)) return std::nullopt;
+  return mesh;
+}
+
+} // namespace
+
+PolygonMesh read_obj(std::string_view bytes, std::string_view name) {
+  return chunked_or_serially(bytes, name, read_in_chunks, read_serially);
 }
 
 Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {

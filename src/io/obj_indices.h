@@ -19,10 +19,7 @@ inline std::string missing_element(std::string_view element, std::string_view ta
 
 inline void read_position(TextCursor& in, std::vector<Vec3>& positions) {
   if (int64_t(positions.size()) == max_count) in.fail(too_many(uint64_t(max_count) + 1, "vertices"));
-  const float x = in.real("vertex coordinate");
-  const float y = in.real("vertex coordinate");
-  const float z = in.real("vertex coordinate");
-  positions.push_back({x, y, z});
+  positions.push_back(read_point(in));
 }
 
 // A positive index may point forward, to a vertex defined further down, so positive

@@ -1,14 +1,11 @@
 #include "io/formats.h"
-#include "meander/error.h"
 #include "io/reader_support.h"
+#include "io/text_chunks.h"
 #include "io/text_cursor.h"
 
 #include <algorithm>
 #include <optional>
-#include <utility>
 #include <vector>
-
-#include <tbb/parallel_for.h>
 
 namespace meander::io {
 namespace {
@@ -60,11 +57,9 @@ Counts read_counts(TextCursor& in) {
 // One vertex line (three coordinates, then whatever follows: colours, texture
 // coordinates, normals) and one face line (a size, the indices, then a colour).
 Vec3 read_vertex(TextCursor& in) {
-  const float x = in.real("vertex coordinate");
-  const float y = in.real("vertex coordinate");
-  const float z = in.real("vertex coordinate");
+  const Vec3 p = read_point(in);
   in.next_line();
-  return {x, y, z};
+  return p;
 }
 
 template <class Put>
@@ -108,109 +103,43 @@ PolygonMesh read_serially(std::string_view bytes, std::string_view name) {
   return mesh;
 }
 
-bool is_blank(char c) { return TextCursor::is_blank(c) && c != '\r'; }
-
-// A line ends at LF, CRLF or a lone CR, as TextCursor reads it.
-bool is_line_end(const char* q, const char* end) { return *q == '\n' || (*q == '\r' && (q + 1 == end || q[1] != '\n')); }
-
-// The bytes after the counts line cut into chunks at line starts, read on all cores: each
-// line holds one element (TextCursor reads an element's numbers on its line and skips the
-// rest), so a first pass counts each chunk's lines and elements (lines with a word that
-// is not a comment), and a second reads them knowing which element comes first. Anything
-// unusual (too few or too many elements, a bad number, a byte order mark at a chunk's
-// start) returns nothing, and the file is read again serially, which names the problem
-// as it always has.
+// The bytes after the counts line read in chunks (text_chunks.h): each line holds one
+// element (TextCursor reads an element's numbers on its line and skips the rest), so a
+// first pass counts each chunk's elements (lines with a word that is not a comment) and
+// a second reads them knowing which element comes first. Nothing when the elements are
+// not those the counts claim, or a chunk fails.
 std::optional<PolygonMesh> read_in_chunks(std::string_view bytes, std::string_view name) {
   TextCursor header(bytes, name);
   const Counts counts = read_counts(header);
-  const size_t body_at = bytes.size() - header.bytes_left();
-  const int64_t body_line = header.line();
   const char* const end = bytes.data() + bytes.size();
-  constexpr size_t min_chunk = size_t(64) << 10;
-  const size_t body = bytes.size() - body_at;
-  const int chunks = int(std::clamp<size_t>(body / min_chunk, 1, 64));
-  // Chunk c: bytes [cut[c], cut[c + 1]), each cut just after a line end.
-  std::vector<const char*> cut(size_t(chunks) + 1, end);
-  cut[0] = bytes.data() + body_at;
-  for (int c = 1; c < chunks; ++c) {
-    const char* q = std::max(cut[size_t(c) - 1], cut[0] + body / size_t(chunks) * size_t(c));
-    while (q != end && !is_line_end(q, end)) ++q;
-    cut[size_t(c)] = q == end ? end : q + 1;
-  }
-  struct Chunk {
-    int64_t lines = 0, elements = 0; // counted in pass 1; then where the chunk's first ones are
-    std::vector<int32_t> sizes, corners;
-    bool failed = false;
-  };
-  std::vector<Chunk> chunk(static_cast<size_t>(chunks));
-  tbb::parallel_for(0, chunks, [&](int c) {
-    Chunk& k = chunk[size_t(c)];
-    const char* q = cut[size_t(c)];
-    const char* const last = cut[size_t(c) + 1];
-    if (c > 0 && last - q >= 3 && std::string_view(q, 3) == "\xEF\xBB\xBF") k.failed = true;
-    while (q != last) {
-      while (q != last && is_blank(*q)) ++q;
-      if (q != last && !is_line_end(q, end) && *q != '#') ++k.elements;
-      while (q != last && !is_line_end(q, end)) ++q;
-      if (q != last) {
-        ++k.lines;
-        ++q;
-      }
-    }
+  std::vector<TextChunk> chunks = cut_into_chunks(bytes, bytes.size() - header.bytes_left());
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for_each_line(chunks[c].text, end, [&](const char* first, const char* line_end) {
+      chunks[c].before += first != line_end && *first != '#';
+    });
   });
-  int64_t elements = 0, lines = body_line;
-  for (Chunk& k : chunk) {
-    if (k.failed) return std::nullopt;
-    elements += std::exchange(k.elements, elements);
-    lines += std::exchange(k.lines, lines);
-  }
-  if (elements != counts.vertices + counts.faces) return std::nullopt;
+  int64_t elements = 0;
+  if (!count_before(chunks, elements) || elements != counts.vertices + counts.faces) return std::nullopt;
   PolygonMesh mesh;
   mesh.positions.resize(size_t(counts.vertices));
-  tbb::parallel_for(0, chunks, [&](int c) {
-    Chunk& k = chunk[size_t(c)];
-    TextCursor in(std::string_view(cut[size_t(c)], size_t(cut[size_t(c) + 1] - cut[size_t(c)])), name, k.lines);
-    try {
-      for (int64_t e = k.elements;; ++e) {
-        in.skip_space();
-        if (in.at_end()) break;
-        if (e < counts.vertices)
-          mesh.positions[size_t(e)] = read_vertex(in);
-        else
-          read_face(in, counts.vertices, k.corners, [&](int32_t size) { k.sizes.push_back(size); });
-      }
-    } catch (const InputError&) {
-      k.failed = true;
+  read_chunks(chunks, name, [&](size_t, TextChunk& k, TextCursor& in) {
+    for (int64_t e = k.before;; ++e) {
+      in.skip_space();
+      if (in.at_end()) break;
+      if (e < counts.vertices)
+        mesh.positions[size_t(e)] = read_vertex(in);
+      else
+        read_face(in, counts.vertices, k.corners, [&](int32_t size) { k.sizes.push_back(size); });
     }
   });
-  size_t corners = 0;
-  for (const Chunk& k : chunk) {
-    if (k.failed) return std::nullopt;
-    corners += k.corners.size();
-  }
-  if (!too_many(corners, "face corners").empty()) return std::nullopt;
-  mesh.face_start.resize(size_t(counts.faces) + 1);
-  mesh.face_vertices.resize(corners);
-  std::vector<size_t> first_face(size_t(chunks) + 1, 0), first_corner(size_t(chunks) + 1, 0);
-  for (int c = 0; c < chunks; ++c) {
-    first_face[size_t(c) + 1] = first_face[size_t(c)] + chunk[size_t(c)].sizes.size();
-    first_corner[size_t(c) + 1] = first_corner[size_t(c)] + chunk[size_t(c)].corners.size();
-  }
-  tbb::parallel_for(0, chunks, [&](int c) {
-    const Chunk& k = chunk[size_t(c)];
-    std::copy(k.corners.begin(), k.corners.end(), mesh.face_vertices.begin() + ptrdiff_t(first_corner[size_t(c)]));
-    int32_t at = int32_t(first_corner[size_t(c)]);
-    for (size_t f = 0; f < k.sizes.size(); ++f) mesh.face_start[first_face[size_t(c)] + f + 1] = at += k.sizes[f];
-  });
-  require_faces(mesh, name);
+  if (!join_faces(chunks, mesh, name)) return std::nullopt;
   return mesh;
 }
 
 } // namespace
 
 PolygonMesh read_off(std::string_view bytes, std::string_view name) {
-  if (std::optional<PolygonMesh> mesh = read_in_chunks(bytes, name)) return std::move(*mesh);
-  return read_serially(bytes, name);
+  return chunked_or_serially(bytes, name, read_in_chunks, read_serially);
 }
 
 void write_off(const PolygonMesh& mesh, AtomicFile& out) {

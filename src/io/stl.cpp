@@ -72,10 +72,7 @@ PolygonMesh read_ascii_stl(std::string_view bytes, std::string_view name) {
     const size_t first = mesh.face_vertices.size();
     while (!in.accept("endloop")) {
       in.expect("vertex");
-      const float x = in.real("vertex coordinate");
-      const float y = in.real("vertex coordinate");
-      const float z = in.real("vertex coordinate");
-      mesh.face_vertices.push_back(welder.add({x, y, z}));
+      mesh.face_vertices.push_back(welder.add(read_point(in)));
     }
     if (const size_t size = mesh.face_vertices.size() - first; size < 3) in.fail(too_few_vertices(int64_t(size)));
     in.expect("endfacet");

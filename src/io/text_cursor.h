@@ -3,6 +3,8 @@
 // Numbers are read in place with std::from_chars: no copies, no allocation.
 #pragma once
 
+#include "meander/mesh.h"
+
 #include <cstdint>
 #include <string_view>
 
@@ -80,5 +82,13 @@ private:
   int64_t line_ = 1;
   std::string_view name_;
 };
+
+// The three coordinates of a vertex, on the cursor's line.
+inline Vec3 read_point(TextCursor& in) {
+  const float x = in.real("vertex coordinate");
+  const float y = in.real("vertex coordinate");
+  const float z = in.real("vertex coordinate");
+  return {x, y, z};
+}
 
 } // namespace meander::io
