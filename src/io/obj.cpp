@@ -10,6 +10,16 @@ namespace meander::io {
 
 namespace {
 
+// The corners of a face line, after its keyword, appended to `corners`, `defined`
+// vertices being defined before it; returns how many.
+int32_t read_face(TextCursor& in, ForwardIndices& forward, int64_t defined, std::vector<int32_t>& corners) {
+  const size_t first = corners.size();
+  while (!in.at_line_end()) corners.push_back(forward.resolve(in, in.integer("vertex index", '/'), "face", defined));
+  const size_t size = corners.size() - first;
+  if (size < 3) in.fail(too_few_vertices(int64_t(size)));
+  return int32_t(size);
+}
+
 // Element by element, failing at the first problem with its line.
 PolygonMesh read_serially(std::string_view bytes, std::string_view name) {
   TextCursor in(bytes, name);
@@ -21,11 +31,7 @@ PolygonMesh read_serially(std::string_view bytes, std::string_view name) {
       if (keyword == "v") {
         read_position(in, mesh.positions);
       } else if (keyword == "f") {
-        const int64_t vertex_count = int64_t(mesh.positions.size());
-        const size_t first = mesh.face_vertices.size();
-        while (!in.at_line_end())
-          mesh.face_vertices.push_back(forward.resolve(in, in.integer("vertex index", '/'), "face", vertex_count));
-        if (const size_t size = mesh.face_vertices.size() - first; size < 3) in.fail(too_few_vertices(int64_t(size)));
+        read_face(in, forward, int64_t(mesh.positions.size()), mesh.face_vertices);
         mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
       }
       // Other statements (vt, vn, o, g, usemtl, l, ...) are not needed, and neither are
@@ -69,12 +75,7 @@ std::optional<PolygonMesh> read_in_chunks(std::string_view bytes, std::string_vi
           if (defined == last) in.fail("a vertex the first pass did not count");
           mesh.positions[size_t(defined++)] = read_point(in);
         } else if (keyword == "f") {
-          const size_t first = k.corners.size();
-          while (!in.at_line_end())
-            k.corners.push_back(forward.resolve(in, in.integer("vertex index", '/'), "face", defined));
-          const size_t size = k.corners.size() - first;
-          if (size < 3) in.fail(too_few_vertices(int64_t(size)));
-          k.sizes.push_back(int32_t(size));
+          k.sizes.push_back(read_face(in, forward, defined, k.corners));
         }
       }
       in.next_line();

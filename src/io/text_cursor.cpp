@@ -60,13 +60,14 @@ void TextCursor::skip_space() {
   }
 }
 
-const char* TextCursor::find_line_end(const char* q) const {
-  const void* newline = std::memchr(q, '\n', size_t(end_ - q));
-  const char* last = newline ? static_cast<const char*>(newline) : end_;
+const char* find_line_end(const char* q, const char* last, const char* end, bool carriage_returns) {
+  const void* newline = std::memchr(q, '\n', size_t(last - q));
+  const char* line_end = newline ? static_cast<const char*>(newline) : last;
   // A lone CR before the LF ends the line first; the CR of a CRLF is that LF's.
-  for (const void* cr; (cr = std::memchr(q, '\r', size_t(last - q))) != nullptr; q = static_cast<const char*>(cr) + 1)
-    if (is_line_end(static_cast<const char*>(cr))) return static_cast<const char*>(cr);
-  return last;
+  for (const void* cr; carriage_returns && (cr = std::memchr(q, '\r', size_t(line_end - q))) != nullptr;
+       q = static_cast<const char*>(cr) + 1)
+    if (is_line_end(static_cast<const char*>(cr), end)) return static_cast<const char*>(cr);
+  return line_end;
 }
 
 void TextCursor::next_line() {

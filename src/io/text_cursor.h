@@ -10,6 +10,16 @@
 
 namespace meander::io {
 
+// A line ends at LF, CRLF or a lone CR (classic Mac OS text); a CR followed by a LF is
+// a blank before the LF. `end` is the end of the text.
+inline bool is_line_end(const char* q, const char* end) {
+  return *q == '\n' || (*q == '\r' && (q + 1 == end || q[1] != '\n'));
+}
+
+// The first line end in [q, last), or last; `end` is the end of the text. Without
+// `carriage_returns` the range holds no CR, and only line feeds are looked for.
+const char* find_line_end(const char* q, const char* last, const char* end, bool carriage_returns = true);
+
 class TextCursor {
 public:
   // `name` stands for the file in messages and `text` starts on line `first_line`.
@@ -59,11 +69,9 @@ public:
   static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 private:
-  // A line ends at LF, CRLF or a lone CR (classic Mac OS text); a CR followed by a LF is
-  // a blank before the LF.
-  bool is_line_end(const char* q) const { return *q == '\n' || (*q == '\r' && (q + 1 == end_ || q[1] != '\n')); }
+  bool is_line_end(const char* q) const { return io::is_line_end(q, end_); }
   // The first line end at or after q, or the end of the text.
-  const char* find_line_end(const char* q) const;
+  const char* find_line_end(const char* q) const { return io::find_line_end(q, end_, end_); }
   bool at_word_end(const char* q) const { return q == end_ || is_blank(*q) || *q == '\n' || *q == '#'; }
   // The word starting at the cursor, for messages.
   std::string_view word_here() const;
