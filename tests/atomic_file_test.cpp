@@ -12,6 +12,8 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -126,6 +128,43 @@ TEST(AtomicFile, CurveFileIsNeverReservedPastItsSize) {
   EXPECT_GT(longest, 0u); // the temporary file was seen
   EXPECT_LE(longest, size);
   EXPECT_EQ(read_polylines(target).points.size(), curve.points.size());
+}
+
+// A curve's points and edges are written around the page cache (O_DIRECT, AtomicFile::
+// fill): once written, almost none of the file's pages are cached, where the page cache
+// would hold its last 128 MiB, here the whole file. The header is 186 bytes (8-digit
+// counts), so every float of the points lies 2 bytes off a multiple of 4, and records are
+// cut at every buffer's end: read back, it is still the curve.
+TEST(AtomicFile, LargeCurveIsWrittenAroundThePageCache) {
+  const fs::path dir = test::output_dir() / "direct";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path target = dir / "curve.ply";
+  if (const int probe = ::open((dir / "probe").c_str(), O_WRONLY | O_CREAT | O_DIRECT, 0644); probe < 0)
+    GTEST_SKIP() << dir << " refuses O_DIRECT: everything goes through the page cache there";
+  else
+    ::close(probe);
+  Polylines curve;
+  for (int32_t i = 0; i < 10'000'000; ++i) curve.points.push_back({float(i), float(i % 7), -float(i)});
+  curve.start = {0, 3'000'001, 7'654'321, int32_t(curve.points.size())};
+  write_polylines(curve, target);
+
+  const int fd = ::open(target.c_str(), O_RDONLY);
+  ASSERT_GE(fd, 0);
+  const size_t size = size_t(fs::file_size(target));
+  void* mapped = ::mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0);
+  ASSERT_NE(mapped, MAP_FAILED);
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  std::vector<unsigned char> resident((size + page - 1) / page);
+  ASSERT_EQ(::mincore(mapped, size, resident.data()), 0);
+  ::munmap(mapped, size);
+  ::close(fd);
+  const auto cached = std::count_if(resident.begin(), resident.end(), [](unsigned char r) { return r & 1; });
+  EXPECT_LT(size_t(cached), resident.size() / 100) << cached << " of " << resident.size() << " pages cached";
+
+  const Polylines read = read_polylines(target);
+  EXPECT_EQ(read.start, curve.start);
+  EXPECT_TRUE(read.points == curve.points);
 }
 
 } // namespace

@@ -170,10 +170,12 @@ TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
   }
 }
 
-// A curve file of more than 250 MB is written behind (src/io/atomic_file.h): its early
-// bytes leave the page cache while later ones are written, and the writer then seeks back
-// into them to close each of the two curves. Read back, it is still the curve in memory.
-TEST(CurveStream, FileWrittenBehindReadsBackAsTheCurve) {
+// A curve file of more than 250 MB is written around the page cache (O_DIRECT, src/io/
+// atomic_file.h), its points a part at a time as the walk shows them, the partial pages
+// between the parts through the page cache; the writer then seeks back to close each of
+// the two curves, which must wait for the direct writes there. Read back, it is still the
+// curve in memory.
+TEST(CurveStream, LargeFileReadsBackAsTheCurve) {
   const CurveResult made = make_curve(sphere_and_torus(12000, 12000), {.cycle = {.seed = 2}, .sample = false});
   const int64_t triangles = made.cycle.num_triangles();
   const CurveOptions options{Smoothing::bspline, int(14'000'000 / triangles + 1)};

@@ -3,13 +3,21 @@
 #include "meander/error.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
+#include <chrono>
 #include <charconv>
 #include <cstdio>
+#include <condition_variable>
 #include <cstring>
 #include <fcntl.h>
+#include <mutex>
+#include <optional>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <system_error>
+#include <thread>
 #include <unistd.h>
 
 namespace meander::io {
@@ -18,6 +26,8 @@ namespace {
 constexpr size_t buffer_size = size_t(1) << 20;
 constexpr uint64_t write_behind_step = uint64_t(16) << 20;
 constexpr size_t write_behind_steps_cached = 8;
+// fill() writes a region this large or larger direct.
+constexpr uint64_t direct_region = uint64_t(16) << 20;
 
 // mkstemp makes a file only its owner may read; the target should get what any new
 // file gets, 0666 minus the umask. Reading the umask means setting it (a race with
@@ -62,6 +72,129 @@ bool replace_in_background(const std::string& temp, const std::filesystem::path&
 
 } // namespace
 
+// The O_DIRECT writer of fill(): `buffers` page-aligned buffers that the caller fills and
+// queues, and a thread that writes them in turn and gives them back.
+struct AtomicFile::Direct {
+  static constexpr uint64_t page = 4096; // alignment of an O_DIRECT write's offset, size and memory
+  static constexpr size_t chunk = size_t(8) << 20;
+  static constexpr int buffers = 4;
+  // How long fill() waits for a buffer before it writes through the page cache instead.
+  static constexpr std::chrono::milliseconds patience{50};
+  struct Job {
+    char* data;
+    uint64_t at;
+    size_t size;
+  };
+
+  int fd = -1;        // the file opened with O_DIRECT
+  int cached_fd = -1; // AtomicFile's descriptor, for what O_DIRECT refuses
+  char* memory = nullptr;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<char*> idle;
+  std::deque<Job> jobs;     // queued
+  std::optional<Job> going; // being written
+  bool stopping = false;
+  int error = 0;
+  bool refused = false; // the thread's alone: O_DIRECT refused a write, the page cache takes the rest
+  std::thread thread;
+
+  // Null where the file system refuses O_DIRECT or the buffers or the thread cannot be had.
+  static std::unique_ptr<Direct> open(const std::string& path, int cached_fd) {
+    auto d = std::make_unique<Direct>();
+    d->cached_fd = cached_fd;
+    d->fd = ::open(path.c_str(), O_WRONLY | O_DIRECT | O_CLOEXEC);
+    if (d->fd < 0) return nullptr;
+    void* memory = ::mmap(nullptr, chunk * buffers, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED) return nullptr;
+    d->memory = static_cast<char*>(memory);
+    ::madvise(memory, chunk * buffers, MADV_HUGEPAGE); // advice only
+    for (int i = 0; i < buffers; ++i) d->idle.push_back(d->memory + chunk * size_t(i));
+    try {
+      d->thread = std::thread([raw = d.get()] { raw->run(); });
+    } catch (const std::system_error&) {
+      return nullptr;
+    }
+    return d;
+  }
+
+  // Stops at once: what is still queued is dropped (the file is not kept, or was drained).
+  ~Direct() {
+    {
+      std::lock_guard lock(mutex);
+      stopping = true;
+    }
+    changed.notify_all();
+    if (thread.joinable()) thread.join();
+    if (fd >= 0) ::close(fd);
+    if (memory) ::munmap(memory, chunk * buffers);
+  }
+
+  void run() {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      changed.wait(lock, [&] { return stopping || !jobs.empty(); });
+      if (stopping) return;
+      going = jobs.front();
+      jobs.pop_front();
+      const bool skip = error != 0;
+      lock.unlock();
+      const int failure = skip ? 0 : write(*going);
+      lock.lock();
+      idle.push_back(going->data);
+      going.reset();
+      if (failure != 0 && error == 0) error = failure;
+      changed.notify_all();
+    }
+  }
+
+  // 0, or the errno of the write that failed.
+  int write(const Job& job) {
+    for (size_t done = 0; done < job.size;) {
+      const ssize_t n = ::pwrite(refused ? cached_fd : fd, job.data + done, job.size - done, off_t(job.at + done));
+      if (n >= 0)
+        done += size_t(n);
+      else if (errno == EINVAL && !refused)
+        refused = true; // an alignment this file system does not take, or a short write left one
+      else if (errno != EINTR)
+        return errno;
+    }
+    return 0;
+  }
+
+  // An idle buffer, or null when none became idle within `patience` or a write failed
+  // (its errno in `failure`).
+  char* take(int& failure) {
+    std::unique_lock lock(mutex);
+    changed.wait_for(lock, patience, [&] { return !idle.empty() || error != 0; });
+    failure = error;
+    if (idle.empty() || error != 0) return nullptr;
+    char* data = idle.back();
+    idle.pop_back();
+    return data;
+  }
+
+  void queue(const Job& job) {
+    {
+      std::lock_guard lock(mutex);
+      jobs.push_back(job);
+    }
+    changed.notify_all();
+  }
+
+  // Waits until no write queued or going overlaps the pages of [begin, end) (all of them
+  // for the whole file); returns the errno of a write that failed, or 0.
+  int settle(uint64_t begin, uint64_t end) {
+    begin = begin / page * page;
+    const auto overlaps = [&](const Job& j) { return j.at < end && begin < j.at + j.size; };
+    std::unique_lock lock(mutex);
+    changed.wait(lock, [&] {
+      return error != 0 || ((!going || !overlaps(*going)) && std::none_of(jobs.begin(), jobs.end(), overlaps));
+    });
+    return error;
+  }
+};
+
 AtomicFile::AtomicFile(const std::filesystem::path& target) : target_(target) {
   std::string temp_name = target.filename().string();
   temp_name.insert(temp_name.begin(), '.');
@@ -75,6 +208,7 @@ AtomicFile::AtomicFile(const std::filesystem::path& target) : target_(target) {
 }
 
 AtomicFile::~AtomicFile() {
+  direct_.reset(); // its thread writes to fd_
   if (fd_ >= 0) ::close(fd_);
   if (!committed_) ::unlink(temp_.c_str());
 }
@@ -157,20 +291,68 @@ void AtomicFile::write_behind(uint64_t begin, uint64_t end) {
 }
 
 void AtomicFile::write_all(const char* data, size_t size) {
-  const uint64_t begin = offset_;
   reserve(offset_ + size);
+  write_cached(data, size, offset_);
+  offset_ += size;
+  written_ = std::max(written_, offset_);
+}
+
+void AtomicFile::write_cached(const char* data, size_t size, uint64_t at) {
+  if (size == 0) return;
+  if (direct_)
+    if (const int error = direct_->settle(at, at + size)) fail("cannot write", error);
+  const uint64_t begin = at;
   while (size > 0) {
-    const ssize_t written = ::write(fd_, data, size);
+    const ssize_t written = ::pwrite(fd_, data, size, off_t(at));
     if (written < 0) {
       if (errno == EINTR) continue;
       fail("cannot write", errno);
     }
     data += written;
     size -= size_t(written);
-    offset_ += uint64_t(written);
+    at += uint64_t(written);
   }
-  written_ = std::max(written_, offset_);
-  write_behind(begin, offset_);
+  write_behind(begin, at);
+}
+
+void AtomicFile::fill(uint64_t size, const Fill& make) {
+  flush();
+  const uint64_t begin = offset_, end = offset_ + size;
+  reserve(end);
+  if (size >= direct_region && !direct_tried_) {
+    direct_tried_ = true;
+    direct_ = Direct::open(temp_, fd_);
+  }
+  uint64_t at = begin;
+  // Up to `to` through the buffer and the page cache.
+  const auto cached = [&](uint64_t to) {
+    for (size_t n; at < to; at += n) {
+      n = size_t(std::min<uint64_t>(to - at, buffer_.size()));
+      make(at - begin, n, buffer_.data());
+      write_cached(buffer_.data(), n, at);
+    }
+  };
+  if (direct_ && size >= direct_region) {
+    constexpr uint64_t page = Direct::page;
+    const uint64_t last = end / page * page;
+    cached((begin + page - 1) / page * page);
+    while (at < last) {
+      const size_t n = size_t(std::min<uint64_t>(last - at, Direct::chunk));
+      int failure = 0;
+      char* buffer = direct_->take(failure);
+      if (failure != 0) fail("cannot write", failure);
+      if (buffer == nullptr) { // the disk is behind: it would have been so before
+        cached(at + n);
+        continue;
+      }
+      make(at - begin, n, buffer);
+      direct_->queue({buffer, at, n});
+      at += n;
+    }
+  }
+  cached(end);
+  offset_ = end;
+  written_ = std::max(written_, end);
 }
 
 uint64_t AtomicFile::position() {
@@ -180,13 +362,16 @@ uint64_t AtomicFile::position() {
 
 void AtomicFile::seek(uint64_t offset) {
   flush();
-  if (::lseek(fd_, off_t(offset), SEEK_SET) < 0) fail("cannot write", errno);
   offset_ = offset;
 }
 
 void AtomicFile::close() {
   if (fd_ < 0) return;
   flush();
+  if (direct_) {
+    if (const int error = direct_->settle(0, UINT64_MAX)) fail("cannot write", error);
+    direct_.reset();
+  }
   if (reserved_ > written_ && ::ftruncate(fd_, off_t(written_)) != 0) fail("cannot write", errno);
   const int closed = ::close(fd_);
   fd_ = -1;

@@ -20,6 +20,17 @@
 // such pages cost 2.5-3.5 s/GiB, and the write took 5.7-10 s against 1.2-1.7 s written
 // behind (docs/benchmarks.md). The page cache of the written bytes is then reused over
 // and over.
+//
+// A large region whose bytes the caller can make in any order of pieces (fill(): a
+// curve's points and edges) skips the page cache altogether: its whole pages are made in
+// place in a few page-aligned buffers and written with O_DIRECT by a thread of the file's
+// own while the caller makes the next ones; only the partial pages at its ends go through
+// the page cache. Writing the 10M-triangle curve's 0.96 GB of edges during the spanning
+// forest made the forest 0.2 s slower through the page cache: the copy into it, finding
+// it free pages and writing them back; direct, its system time went 0.7-0.9 -> 0.3 s
+// (docs/benchmarks.md). A buffer that stays busy for long (a disk slower than the caller)
+// goes through the page cache instead of waiting, as it would have before, and where the
+// file system refuses O_DIRECT everything does.
 #pragma once
 
 #include "io/binary.h"
@@ -27,6 +38,8 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -65,6 +78,12 @@ public:
   // after the previous one (docs/benchmarks.md).
   void expect_size(uint64_t size);
 
+  // Writes `size` bytes from the current position: fill(offset, n, dst) puts the n bytes
+  // that start `offset` bytes into them at dst, asked for pieces in order, of any size and
+  // at any alignment. Large regions are written direct, as the header says.
+  using Fill = std::function<void(uint64_t offset, size_t size, char* dst)>;
+  void fill(uint64_t size, const Fill& fill);
+
   // The offset of the next byte, and a move to another (past the end leaves a hole that
   // a later seek back fills): for formats whose sections are written out of order.
   uint64_t position();
@@ -88,6 +107,8 @@ private:
   // Writes out the buffer and closes the file (once).
   void close();
   void write_all(const char* data, size_t size);
+  // Bytes through the page cache at `at`, once no direct write still to come covers them.
+  void write_cached(const char* data, size_t size, uint64_t at);
   // Reserves the file's blocks up to at least `end` while the file system can.
   void reserve(uint64_t end);
   // Sends bytes [begin, end), just written, to the disk and drops earlier ones from the
@@ -111,6 +132,9 @@ private:
   uint64_t unsent_begin_ = 0, unsent_end_ = 0;
   std::deque<std::pair<uint64_t, uint64_t>> sent_;
   bool writing_behind_ = true;
+  struct Direct;
+  std::unique_ptr<Direct> direct_; // the O_DIRECT writer, from the first large fill()
+  bool direct_tried_ = false;
 };
 
 } // namespace meander::io

@@ -1,11 +1,14 @@
-#include "io/block_writer.h"
 #include "io/formats.h"
 #include "io/polyline_stream.h"
 #include "io/reader_support.h"
 #include "meander/error.h"
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <string>
+
+#include <tbb/parallel_for.h>
 
 namespace meander {
 namespace {
@@ -149,12 +152,41 @@ uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
   return points_at;
 }
 
+namespace {
+
+// Bytes [offset, offset + size) of records of `record` bytes at dst: make(first, count,
+// at) writes the records [first, first + count) at `at`, which may have any alignment;
+// a record that the range cuts is made apart and its part copied. Whole records are made
+// in parallel blocks.
+template <class Make> void fill_records(uint64_t offset, size_t size, char* dst, size_t record, Make&& make) {
+  std::array<char, 16> one;
+  int64_t r = int64_t(offset / record);
+  if (const size_t skip = size_t(offset % record); skip > 0 && size > 0) {
+    make(r++, 1, one.data());
+    const size_t n = std::min(record - skip, size);
+    std::memcpy(dst, one.data() + skip, n);
+    dst += n;
+    size -= n;
+  }
+  const int64_t whole = int64_t(size / record);
+  tbb::parallel_for(int64_t(0), (whole + block_points - 1) / block_points, [&](int64_t b) {
+    const int64_t first = b * block_points, count = std::min(block_points, whole - first);
+    make(r + first, count, dst + size_t(first) * record);
+  });
+  if (const size_t rest = size - size_t(whole) * record; rest > 0) {
+    make(r + whole, 1, one.data());
+    std::memcpy(dst + size_t(whole) * record, one.data(), rest);
+  }
+}
+
+} // namespace
+
 void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
   const std::vector<int64_t> edge_start = ply_edge_start(curves);
   out.seek(points_at + 12 * uint64_t(curves.start.back()));
-  io::write_blocks(out, edge_start.back(), block_points, [&](int64_t begin, int64_t end, std::vector<char>& bytes) {
-    bytes.resize(size_t(end - begin) * 8);
-    char* at = bytes.data();
+  // Edges [begin, begin + count) at `at`.
+  const auto edges = [&](int64_t begin, int64_t count, char* at) {
+    const int64_t end = begin + count;
     // Edge i of polyline k joins points first + i and first + i + 1, the last of a closed
     // one back to its first.
     // A run of a polyline's edges is a loop the compiler vectorises (120M edges for a
@@ -164,15 +196,18 @@ void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t
       while (e >= edge_start[k + 1]) ++k;
       const int32_t first = curves.start[k], last = curves.start[k + 1] - 1;
       const int32_t from = first + int32_t(e - edge_start[k]);
-      const int32_t count = int32_t(std::min(end, edge_start[k + 1]) - e);
-      for (int32_t j = 0; j < count; ++j) {
+      const int32_t n = int32_t(std::min(end, edge_start[k + 1]) - e);
+      for (int32_t j = 0; j < n; ++j) {
         io::store_little_endian(at + 8 * size_t(j), from + j);
         io::store_little_endian(at + 8 * size_t(j) + 4, from + j + 1);
       }
-      at += 8 * size_t(count);
-      e += count;
-      if (from + count - 1 == last) io::store_little_endian(at - 4, first); // a closed one's last edge
+      at += 8 * size_t(n);
+      e += n;
+      if (from + n - 1 == last) io::store_little_endian(at - 4, first); // a closed one's last edge
     }
+  };
+  out.fill(8 * uint64_t(edge_start.back()), [&](uint64_t offset, size_t size, char* dst) {
+    fill_records(offset, size, dst, 8, edges);
   });
 }
 
@@ -182,24 +217,27 @@ void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_
 
 void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at, int64_t begin, int64_t end) {
   out.seek(points_at + 12 * uint64_t(begin));
-  // Sampling a block of a smooth curve costs more than writing it, so blocks are made on
-  // all cores and written in order.
-  io::write_blocks(out, end - begin, block_points, [&, first = begin](int64_t from, int64_t to, std::vector<char>& bytes) {
-    bytes.resize(size_t(to - from) * 12);
-    if constexpr (host_is_little_endian && sizeof(Vec3) == 12) {
-      // A point's three floats are its record: sampled straight into the block.
-      curves.points(first + from, first + to, reinterpret_cast<Vec3*>(bytes.data()));
-    } else {
-      std::vector<Vec3> points(size_t(to - from));
-      curves.points(first + from, first + to, points.data());
-      char* at = bytes.data();
-      for (const Vec3& p : points) {
-        io::store_little_endian(at, p.x);
-        io::store_little_endian(at + 4, p.y);
-        io::store_little_endian(at + 8, p.z);
-        at += 12;
+  // Points [first, first + count) of the range at `at`. A point's three floats are its
+  // record: on a little-endian host sampled straight into place where `at` is aligned for
+  // floats, else through a small buffer.
+  const auto points = [&](int64_t first, int64_t count, char* at) {
+    if (host_is_little_endian && sizeof(Vec3) == 12 && reinterpret_cast<uintptr_t>(at) % alignof(Vec3) == 0) {
+      curves.points(begin + first, begin + first + count, reinterpret_cast<Vec3*>(at));
+      return;
+    }
+    std::array<Vec3, 1024> some;
+    for (int64_t i = 0; i < count; i += int64_t(some.size())) {
+      const int64_t n = std::min<int64_t>(count - i, int64_t(some.size()));
+      curves.points(begin + first + i, begin + first + i + n, some.data());
+      for (int64_t j = 0; j < n; ++j, at += 12) {
+        io::store_little_endian(at, some[size_t(j)].x);
+        io::store_little_endian(at + 4, some[size_t(j)].y);
+        io::store_little_endian(at + 8, some[size_t(j)].z);
       }
     }
+  };
+  out.fill(12 * uint64_t(end - begin), [&](uint64_t offset, size_t size, char* dst) {
+    fill_records(offset, size, dst, 12, points);
   });
 }
 
