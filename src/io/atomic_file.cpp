@@ -76,7 +76,7 @@ bool replace_in_background(const std::string& temp, const std::filesystem::path&
 // queues, and a thread that writes them in turn and gives them back.
 struct AtomicFile::Direct {
   static constexpr uint64_t page = 4096; // alignment of an O_DIRECT write's offset, size and memory
-  static constexpr size_t chunk = size_t(8) << 20;
+  static constexpr size_t chunk = size_t(4) << 20;
   static constexpr int buffers = 4;
   // How long fill() waits for a buffer before it writes through the page cache instead.
   static constexpr std::chrono::milliseconds patience{50};
