@@ -8,8 +8,8 @@
 // TLB misses than in the algorithms. Debian's kernel gives huge pages only to memory that
 // asks for them (transparent_hugepage=madvise), and glibc asks only when started with
 // GLIBC_TUNABLES=glibc.malloc.hugetlb=1, which a program cannot set for itself once it
-// runs. So blocks of 4 MiB and more are advised here: glibc serves them with their own
-// mmap, untouched apart from their first page, and free() unmaps them as usual.
+// runs. So blocks of 4 MiB and more are advised here, whether glibc serves them from its
+// heap (under 32 MiB, below) or with their own mmap, which free() unmaps as usual.
 //
 // Memory given back to the kernel costs a page fault per 4 KiB page when it is taken
 // again, and on this project's machines (virtual, with paravirtualised page tables) a
