@@ -78,11 +78,11 @@ public:
   // after the previous one (docs/benchmarks.md).
   void expect_size(uint64_t size);
 
-  // Writes `size` bytes from the current position: fill(offset, n, dst) puts the n bytes
+  // Writes `size` bytes from the current position: make(offset, n, dst) puts the n bytes
   // that start `offset` bytes into them at dst, asked for pieces in order, of any size and
   // at any alignment. Large regions are written direct, as the header says.
   using Fill = std::function<void(uint64_t offset, size_t size, char* dst)>;
-  void fill(uint64_t size, const Fill& fill);
+  void fill(uint64_t size, const Fill& make);
 
   // The offset of the next byte, and a move to another (past the end leaves a hole that
   // a later seek back fills): for formats whose sections are written out of order.
