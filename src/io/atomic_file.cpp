@@ -3,7 +3,6 @@
 #include "meander/error.h"
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <chrono>
 #include <charconv>
