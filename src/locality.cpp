@@ -47,11 +47,14 @@ std::vector<int32_t> inverse(const std::vector<int32_t>& order) {
   return rank;
 }
 
-// The faces of `mesh` moved so that old face f becomes new face face_rank[f], their
-// corners renamed by vertex_name, and the positions placed by `place` (new position i =
-// old position place[i]). The faces are read in their order and written where they go:
-// scattered writes cost less than scattered reads, which wait.
-PolygonMesh permuted(const PolygonMesh& mesh, const std::vector<int32_t>& face_rank,
+// The faces of `mesh` in the order `source` gives (new face i is old face source[i]),
+// their corners renamed by vertex_name, and the positions placed by `place` (new
+// position i = old position place[i]). Each new face is read from where it was and
+// written in order, not read in order and written where it goes: scattered writes miss
+// the TLB as often as scattered reads and fetch each line before writing it too, and
+// `reordered` needs no inverse of the face order. On the shuffled 10M sphere (perf,
+// small pages) the faces and the inverse took 0.43 s of CPU against 0.59 s.
+PolygonMesh permuted(const PolygonMesh& mesh, const std::vector<int32_t>& source,
                      const std::vector<int32_t>& vertex_name, const std::vector<int32_t>& place) {
   PolygonMesh out;
   out.positions.resize(mesh.positions.size());
@@ -69,15 +72,15 @@ PolygonMesh permuted(const PolygonMesh& mesh, const std::vector<int32_t>& face_r
   } else {
     out.face_start[0] = 0;
     tbb::parallel_for(faces, [&](const tbb::blocked_range<int32_t>& r) {
-      for (int32_t f = r.begin(); f < r.end(); ++f) out.face_start[size_t(face_rank[size_t(f)]) + 1] = mesh.face_size(f);
+      for (int32_t f = r.begin(); f < r.end(); ++f) out.face_start[size_t(f) + 1] = mesh.face_size(source[size_t(f)]);
     });
     for (int32_t f = 0; f < nf; ++f) out.face_start[size_t(f) + 1] += out.face_start[size_t(f)];
   }
   out.face_vertices.resize(mesh.face_vertices.size());
   tbb::parallel_for(faces, [&](const tbb::blocked_range<int32_t>& r) {
     for (int32_t f = r.begin(); f < r.end(); ++f) {
-      int32_t* to = out.face_vertices.data() + out.face_start[size_t(face_rank[size_t(f)])];
-      for (const int32_t v : mesh.face(f)) *to++ = vertex_name[size_t(v)];
+      int32_t* to = out.face_vertices.data() + out.face_start[size_t(f)];
+      for (const int32_t v : mesh.face(source[size_t(f)])) *to++ = vertex_name[size_t(v)];
     }
   });
   return out;
@@ -166,11 +169,11 @@ MeshOrder locality_order(const PolygonMesh& mesh) {
 }
 
 PolygonMesh reordered(const PolygonMesh& mesh, const MeshOrder& order) {
-  return permuted(mesh, inverse(order.face_order), order.vertex_rank, inverse(order.vertex_rank));
+  return permuted(mesh, order.face_order, order.vertex_rank, inverse(order.vertex_rank));
 }
 
 PolygonMesh restored(const PolygonMesh& mesh, const MeshOrder& order) {
-  return permuted(mesh, order.face_order, inverse(order.vertex_rank), order.vertex_rank);
+  return permuted(mesh, inverse(order.face_order), inverse(order.vertex_rank), order.vertex_rank);
 }
 
 } // namespace meander
