@@ -75,9 +75,10 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
   // those are (tail side in bits 0-1, head side in bits 2-3). The second halfedge may run
   // either way (non-orientable or misoriented input), which changes its sides. Every loop
   // writes only its own elements, so each runs in parallel.
-  q.quads.resize(size_t(ne));
+  q.quads.resize(size_t(ne)); // each written below
   std::vector<uint8_t> sides(size_t(mesh.num_corners()));
   constexpr auto pack = [](int tail, int head) { return uint8_t(tail | head << 2); };
+  constexpr uint8_t half = 16; // the halfedge's quad is a half quad
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, ne, 1 << 14), [&](const tbb::blocked_range<int32_t>& edges) {
     for (int32_t e = edges.begin(); e < edges.end(); ++e) {
       const auto hs = c.halfedges(e);
@@ -85,7 +86,7 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
       const int32_t x = mesh.face_vertices[size_t(a)];
       const int32_t y = halfedge_target(mesh, c, a);
       const int32_t fa = nv + c.face_of(a);
-      sides[size_t(a)] = pack(3, 2);
+      sides[size_t(a)] = hs.size() == 1 ? uint8_t(pack(3, 2) | half) : pack(3, 2);
       if (hs.size() == 1) {
         q.quads[size_t(e)] = {x, -1, y, fa};
         continue;
@@ -108,9 +109,9 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
 
   // 3. The black edge (F, v) at the corner where halfedge h enters v and next(h) leaves it
   // is shared by the quads of h and next(h); each quad side is written by one corner, and
-  // the sides no corner writes (a half quad's 0 and 1) stay -1. Faces of one size are
-  // found without face_start, which is released by then.
-  q.neighbors.assign(size_t(ne), {-1, -1, -1, -1});
+  // the sides no corner writes (a half quad's 0 and 1) are written -1 by the half quad's
+  // one halfedge. Faces of one size are found without face_start, which is released by then.
+  q.neighbors.resize(size_t(ne)); // each side written below
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, nf, 1 << 14), [&](const tbb::blocked_range<int32_t>& faces) {
     for (int32_t f = faces.begin(); f < faces.end(); ++f) {
       const int32_t first = c.face_size > 0 ? f * c.face_size : mesh.face_start[f];
@@ -118,9 +119,10 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
       for (int32_t h = first; h < last; ++h) {
         const int32_t g = h + 1 == last ? first : h + 1;
         const int32_t qh = c.halfedge_edge[size_t(h)], qg = c.halfedge_edge[size_t(g)];
-        const int head = sides[size_t(h)] >> 2, tail = sides[size_t(g)] & 3;
+        const int head = (sides[size_t(h)] >> 2) & 3, tail = sides[size_t(g)] & 3;
         q.neighbors[size_t(qh)][size_t(head)] = 4 * qg + tail;
         q.neighbors[size_t(qg)][size_t(tail)] = 4 * qh + head;
+        if (sides[size_t(h)] & half) q.neighbors[size_t(qh)][0] = q.neighbors[size_t(qh)][1] = -1;
       }
     }
   });
