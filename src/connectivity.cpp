@@ -70,8 +70,8 @@ Connectivity build_connectivity(const PolygonMesh& mesh) {
     for (size_t k = 0; k < size_t(chunks); ++k) placed += std::exchange(place[lo * size_t(chunks) + k], placed);
   }
   range[size_t(nv)] = placed;
-  std::vector<int32_t>& sorted = c.edge_halfedges;
-  std::vector<int32_t>& upper = c.halfedge_edge;
+  UninitVector<int32_t>& sorted = c.edge_halfedges;
+  UninitVector<int32_t>& upper = c.halfedge_edge;
   sorted.resize(size_t(nh));
   upper.resize(size_t(nh));
   for_each_chunk([&](int32_t, int32_t h, int32_t u, int32_t v, int32_t& at) {

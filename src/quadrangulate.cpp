@@ -138,12 +138,12 @@ QuadMesh dual_simplest(const PolygonMesh& mesh, const Connectivity& c) {
 
 QuadMesh dual_simplest(PolygonMesh&& mesh, Connectivity&& c) {
   require_manifold_edges(c);
-  std::vector<std::array<int32_t, 2>>().swap(c.edge_vertices);
+  decltype(c.edge_vertices)().swap(c.edge_vertices);
   QuadMesh q = dual_simplest_passes(mesh, std::move(mesh.positions), c, [&](int pass) {
     if (pass == 1) { // the quads' corners are known: only the corners' edges are left to read
-      std::vector<int32_t>().swap(c.halfedge_face);
-      std::vector<int32_t>().swap(c.edge_halfedges);
-      std::vector<int32_t>().swap(c.edge_start);
+      decltype(c.halfedge_face)().swap(c.halfedge_face);
+      decltype(c.edge_halfedges)().swap(c.edge_halfedges);
+      decltype(c.edge_start)().swap(c.edge_start);
     } else { // the face points are placed: faces are only walked round from here on
       std::vector<int32_t>().swap(mesh.face_vertices);
       if (c.face_size > 0) std::vector<int32_t>().swap(mesh.face_start);

@@ -5,6 +5,7 @@
 // the same way from both sides) and counts non-manifold edges instead of dropping them.
 #pragma once
 
+#include "meander/default_init.h"
 #include "meander/mesh.h"
 
 #include <array>
@@ -23,13 +24,14 @@ namespace meander {
 // halfedge_face otherwise (face_size 0), since an array as long as the corners is
 // 114 MB on 10M triangles, and every large array costs this project's machines more to
 // take fresh than to fill.
+// The arrays are not zeroed when sized (default_init.h): each is written whole right after.
 struct Connectivity {
-  std::vector<int32_t> halfedge_edge;
-  std::vector<int32_t> halfedge_face;
+  UninitVector<int32_t> halfedge_edge;
+  UninitVector<int32_t> halfedge_face;
   int32_t face_size = 0;
-  std::vector<std::array<int32_t, 2>> edge_vertices;
-  std::vector<int32_t> edge_start;
-  std::vector<int32_t> edge_halfedges;
+  UninitVector<std::array<int32_t, 2>> edge_vertices;
+  UninitVector<int32_t> edge_start;
+  UninitVector<int32_t> edge_halfedges;
 
   int32_t face_of(int32_t h) const {
     // Division by a constant is a multiplication; by a variable, ten times as slow.

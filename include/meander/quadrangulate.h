@@ -3,38 +3,14 @@
 #pragma once
 
 #include "meander/connectivity.h"
+#include "meander/default_init.h"
 #include "meander/mesh.h"
 
 #include <array>
 #include <cstdint>
-#include <memory>
-#include <type_traits>
-#include <utility>
 #include <vector>
 
 namespace meander {
-
-// std::allocator, except that an element made without a value (resize(n)) is left
-// uninitialised: the quad arrays are written whole right after they are sized, and
-// zeroing them first was a serial pass of 240 MB each on 10M triangles.
-template <typename T>
-struct DefaultInitAllocator : std::allocator<T> {
-  template <typename U>
-  struct rebind {
-    using other = DefaultInitAllocator<U>;
-  };
-  DefaultInitAllocator() = default;
-  template <typename U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
-  template <typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    std::construct_at(p, std::forward<Args>(args)...);
-  }
-};
 
 // A quad mesh with side adjacency. Quad q has corners quads[q] (vertex indices into
 // positions), in the orientation of the surface it came from. Side k of a quad joins
@@ -46,8 +22,8 @@ struct DefaultInitAllocator : std::allocator<T> {
 // flips; its sides 0 and 1 do not exist (neighbors -1).
 struct QuadMesh {
   std::vector<Vec3> positions;
-  std::vector<std::array<int32_t, 4>, DefaultInitAllocator<std::array<int32_t, 4>>> quads;
-  std::vector<std::array<int32_t, 4>, DefaultInitAllocator<std::array<int32_t, 4>>> neighbors;
+  UninitVector<std::array<int32_t, 4>> quads;
+  UninitVector<std::array<int32_t, 4>> neighbors;
   // Set by dual_simplest: corners 1 and 3 are face points, vertex face_point_offset + f
   // standing for face f. With every quad split along corners 0-2, the triangle with apex
   // 1 or 3 then lies on the loop around that face, which spares the cycle a labelling
