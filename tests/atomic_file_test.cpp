@@ -33,7 +33,11 @@ uintmax_t temporary_size(const fs::path& target) {
   prefix += ".tmp.";
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(target.parent_path()))
-    if (entry.path().filename().string().starts_with(prefix)) return entry.file_size(error);
+    if (entry.path().filename().string().starts_with(prefix)) {
+      // Renamed away since the listing: file_size then fails and gives uintmax_t(-1).
+      const uintmax_t size = entry.file_size(error);
+      return error ? 0 : size;
+    }
   return 0;
 }
 
