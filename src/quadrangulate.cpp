@@ -72,9 +72,10 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
   // 1. Quad e has corners (x, F_b, y, F_a) where its first halfedge a runs x -> y in face
   // F_a and its second halfedge b lies in face F_b. Each halfedge h of face F touches two
   // black edges of its quad: (F, tail h) and (head h, F); sides[h] says which quad sides
-  // those are (tail side in bits 0-1, head side in bits 2-3). The second halfedge may run
-  // either way (non-orientable or misoriented input), which changes its sides. Every loop
-  // writes only its own elements, so each runs in parallel.
+  // those are (tail side in bits 0-1, head side in bits 2-3, `half` for the one halfedge
+  // of a half quad). The second halfedge may run either way (non-orientable or
+  // misoriented input), which changes its sides. Every loop writes only its own
+  // elements, so each runs in parallel.
   q.quads.resize(size_t(ne)); // each written below
   std::vector<uint8_t> sides(size_t(mesh.num_corners()));
   constexpr auto pack = [](int tail, int head) { return uint8_t(tail | head << 2); };
@@ -86,11 +87,12 @@ QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& posit
       const int32_t x = mesh.face_vertices[size_t(a)];
       const int32_t y = halfedge_target(mesh, c, a);
       const int32_t fa = nv + c.face_of(a);
-      sides[size_t(a)] = hs.size() == 1 ? uint8_t(pack(3, 2) | half) : pack(3, 2);
       if (hs.size() == 1) {
+        sides[size_t(a)] = pack(3, 2) | half;
         q.quads[size_t(e)] = {x, -1, y, fa};
         continue;
       }
+      sides[size_t(a)] = pack(3, 2);
       const int32_t b = hs[1];
       q.quads[size_t(e)] = {x, nv + c.face_of(b), y, fa};
       sides[size_t(b)] = mesh.face_vertices[size_t(b)] == x ? pack(0, 1) : pack(1, 0);
