@@ -12,7 +12,7 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
 # cpp-httplib: the studio's server (`meander serve`).
 DEBIAN_PACKAGES += libcpp-httplib-dev
 
-.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz
+.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-check
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -34,11 +34,11 @@ demo: build
 	@echo "demo: outputs are in out/"
 
 # The suite in the Release build, the same suite again under the sanitizers (which also
-# builds the fuzz targets), then a short run of each fuzz target.
+# builds the fuzz targets), then each fuzz target's seeds and a fixed number of inputs more.
 test: build validator browser
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) test-sanitize
-	$(MAKE) fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS)
+	$(MAKE) fuzz-check
 
 # The Khronos glTF validator (npm) checks the GLB files Meander writes.
 validator:
@@ -55,9 +55,10 @@ validator:
 # accepts from 16 on.
 SANITIZE_BUILD ?= build-sanitize
 FUZZ_SECONDS ?= 60
-# `make test` runs each fuzz target this long: every seed (tests/corpus, tests/regressions,
-# the small shared meshes) under the sanitizers, then a little fuzzing.
-CI_FUZZ_SECONDS ?= 10
+# `make test` (fuzz-check) runs every seed of each fuzz target (tests/corpus,
+# tests/regressions, the small shared meshes) under the sanitizers, then this many inputs
+# more from a fixed seed: a count, not a time, so that a busy machine runs the same ones.
+FUZZ_RUNS ?= 10000
 # Which tests test-sanitize runs (a ctest -R regex; empty: all of them).
 SANITIZE_TESTS ?=
 
@@ -76,6 +77,10 @@ test-sanitize: sanitize-config validator
 fuzz: sanitize-config
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
 	fuzz/run.sh $(SANITIZE_BUILD) $(FUZZ_SECONDS)
+
+fuzz-check: sanitize-config
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
+	fuzz/run.sh $(SANITIZE_BUILD) --runs $(FUZZ_RUNS)
 
 # The studio's page (studio/: three.js built by vite into studio/dist, which `meander serve`
 # serves; no CDN at run time).

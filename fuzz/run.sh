@@ -1,20 +1,36 @@
 #!/usr/bin/env bash
-# Runs every fuzz target of a MEANDER_BUILD_FUZZ build for SECONDS each, one after the
-# other (each on one core), and stops at the first finding, leaving its input in
-# BUILD/fuzz-runs/TARGET/ as libFuzzer names it (crash-*, leak-*, timeout-*, oom-*).
+# Runs every fuzz target of a MEANDER_BUILD_FUZZ build one after the other (each on one
+# core), and stops at the first finding, leaving its input in BUILD/fuzz-runs/TARGET/ as
+# libFuzzer names it (crash-*, leak-*, timeout-*, oom-*).
 # Usage: fuzz/run.sh BUILD SECONDS [TARGET...]
-# FUZZ_TIMEOUT (default 10): the seconds of wall clock one input may take; raise it for
-# runs niced beside other work, where a starved fuzzer waits for a core far longer.
+#          (make fuzz) fuzzes each target SECONDS, from and into BUILD/fuzz-runs/TARGET/
+#          corpus/, which a later run starts from. FUZZ_TIMEOUT (default 10) is the
+#          seconds of wall clock one input may take: raise it for runs niced beside other
+#          work, where a starved fuzzer waits for a core.
+#        fuzz/run.sh BUILD --runs N [TARGET...]
+#          (make test) runs every seed, then N inputs more made from a fixed seed into a
+#          fresh corpus: the same inputs on any machine, busy or not. For that the target
+#          runs on one core (oneTBB then runs no thread of its own), without address
+#          randomisation, and libFuzzer takes no values from the program's comparisons
+#          (some compare clocks or addresses). No limit there that load decides: an input
+#          may take 20 minutes (only a hang takes that long), and memory is limited per
+#          allocation (1 GiB) rather than by resident size. Runs still part ways now and
+#          then where coverage follows the sanitizer allocator's addresses, and in
+#          fuzz_studio_http, whose server draws its session keys at random.
 # Seeds: fuzz/seeds/TARGET/ (hand-made), the files of tests/corpus/ and the small meshes
 # of ../shared/meshes with the target's extension (linked in place, not copied), and the
-# regressions of tests/regressions/TARGET/. New inputs grow BUILD/fuzz-runs/TARGET/corpus/,
-# which a later run starts from.
+# regressions of tests/regressions/TARGET/.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 build=$(cd "$1" && pwd)
-seconds=$2
-shift 2
+if [ "$2" = --runs ]; then
+  runs=$3 seconds=
+  shift 3
+else
+  runs= seconds=$2
+  shift 2
+fi
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(fuzz_read_obj fuzz_read_ply fuzz_read_stl fuzz_read_off fuzz_read_gltf fuzz_repair fuzz_curve fuzz_studio_request fuzz_studio_upload fuzz_studio_http)
 meshes=${MEANDER_SHARED_MESHES:-$root/../shared/meshes}
@@ -32,9 +48,14 @@ link_files() {
   done
 }
 
+# The first core this process may use, and no address randomisation where the system
+# lets a process turn it off.
+one_core=(taskset -c "$(taskset -pc $$ | sed 's/.*: //; s/[,-].*//')")
+setarch "$(uname -m)" -R true 2> /dev/null && one_core=(setarch "$(uname -m)" -R "${one_core[@]}")
+
 for target in "${targets[@]}"; do
   work=$build/fuzz-runs/$target
-  mkdir -p "$work/corpus" "$work/seeds"
+  mkdir -p "$work/seeds"
   find "$work/seeds" -type l -delete
   case $target in
     fuzz_read_gltf) extensions=(gltf glb) ;;
@@ -49,11 +70,25 @@ for target in "${targets[@]}"; do
   for folder in "$here/seeds/$target" "$root/tests/regressions/$target"; do
     [ -d "$folder" ] && seeds+=("$folder")
   done
-  echo "fuzz: $target for ${seconds}s"
-  # One input may take at most FUZZ_TIMEOUT s and the process 1 GiB: inputs are at most
-  # 16 KiB, so more means memory out of proportion to the input (a count believed before checking).
-  if ! (cd "$work" && "$build/fuzz/$target" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=1024 \
-          -max_len=16384 -print_final_stats=1 "$work/corpus" "${seeds[@]}" > "$work/log.txt" 2>&1); then
+  # An input is at most 16 KiB: 1 GiB of memory is out of proportion to it (a count
+  # believed before checking).
+  common=(-max_len=16384 -print_final_stats=1)
+  if [ -n "$runs" ]; then
+    # -runs counts the seeds' runs too; -reload=0: the corpus is not read again on a clock.
+    corpus=$work/check-corpus
+    rm -rf "$corpus" && mkdir -p "$corpus"
+    count=$(find -L "${seeds[@]}" -type f | wc -l)
+    echo "fuzz: $target: $count seeds, then $runs runs from seed 1"
+    flags=(-runs=$((count + runs)) -seed=1 -reload=0 -use_cmp=0 -use_memmem=0 -timeout=1200 -rss_limit_mb=0 -malloc_limit_mb=1024)
+    fixed=("${one_core[@]}")
+  else
+    corpus=$work/corpus
+    mkdir -p "$corpus"
+    echo "fuzz: $target for ${seconds}s"
+    flags=(-max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=1024)
+    fixed=()
+  fi
+  if ! (cd "$work" && "${fixed[@]}" "$build/fuzz/$target" "${flags[@]}" "${common[@]}" "$corpus" "${seeds[@]}" > "$work/log.txt" 2>&1); then
     tail -n 60 "$work/log.txt"
     echo "fuzz: $target found a problem; its input is in $work (log: $work/log.txt)"
     exit 1

@@ -51,9 +51,13 @@ public:
   template <class Open> bool next_request(std::chrono::milliseconds idle, Open open) {
     const auto deadline = Clock::now() + idle;
     while (pending().empty()) {
-      if (socket_ < 0 || !open() || Clock::now() >= deadline) return false;
+      if (socket_ < 0 || !open()) return false;
       // Short waits, so that a stopping server is noticed within 50 ms.
-      if (wait(POLLIN, std::min(deadline, Clock::now() + std::chrono::milliseconds(50))) && receive() <= 0) return false;
+      if (wait(POLLIN, std::min(deadline, Clock::now() + std::chrono::milliseconds(50)))) {
+        if (receive() <= 0) return false;
+      } else if (Clock::now() >= deadline) {
+        return false;
+      }
     }
     const auto now = Clock::now();
     header_deadline_ = now + limits_.header_timeout;
@@ -78,11 +82,13 @@ public:
   bool too_slow() const { return too_slow_; }
 
   // Before closing after a request that was not read to its end: lets the client finish
-  // sending (for at most `time`, the bytes dropped), so that it reads the answer (a 413,
-  // a 403) rather than a reset connection.
-  void drain(std::chrono::milliseconds time) {
+  // sending (the bytes dropped), so that it reads the answer (a 413, a 403) rather than a
+  // reset connection. Until the client closes, or sends nothing for idle_timeout, or
+  // request_timeout has passed: a deadline of its own would cut off a client slowed by
+  // a busy machine.
+  void drain() {
     shutdown(socket_, SHUT_WR);
-    const auto deadline = Clock::now() + time;
+    const auto deadline = Clock::now() + limits_.request_timeout;
     while (wait(POLLIN, deadline) && receive() > 0) {
     }
   }
@@ -133,14 +139,15 @@ private:
     return n;
   }
 
-  // Whether the socket is ready for `events` before both `deadline` and idle_timeout.
+  // Whether the socket is ready for `events` before both `deadline` and idle_timeout. A
+  // socket ready already is, however late: a thread that was not run for a while (a busy
+  // machine) does not fail a client who was on time.
   bool wait(short events, Clock::time_point deadline) const {
     const auto until = std::min(deadline, Clock::now() + limits_.idle_timeout);
     for (;;) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now()).count();
-      if (left <= 0) return false;
       pollfd fd{socket_, events, 0};
-      const int ready = poll(&fd, 1, int(left));
+      const int ready = poll(&fd, 1, int(std::max<int64_t>(left, 0)));
       if (ready > 0) return true;
       if (ready == 0 || errno != EINTR) return false;
     }
@@ -208,7 +215,7 @@ private:
     setsockopt(socket, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
     ConnectionStream stream(socket, limits_);
     serve(stream);
-    if (!stream.request_complete() && !stream.too_slow()) stream.drain(std::chrono::seconds(2));
+    if (!stream.request_complete() && !stream.too_slow()) stream.drain();
     shutdown(socket, SHUT_RDWR);
     close(socket);
     return true;

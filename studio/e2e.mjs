@@ -48,18 +48,21 @@ const browser = await chromium.launchPersistentContext(profile, {
     '--disable-component-update', '--disable-sync'],
   viewport: { width: 1280, height: 800 },
   acceptDownloads: true,
+  timeout: 0, // however long a busy machine takes to start it
 });
 try {
   const page = browser.pages()[0] ?? await browser.newPage();
+  // Every wait is for a state of the page, never for a time: only ctest's timeout ends a
+  // test that hangs.
+  page.setDefaultTimeout(0);
   const problems = [];
   page.on('pageerror', (e) => problems.push(e.message));
   await page.goto(url);
   check(await page.$('#demo') !== null, 'the page is not built: run `make studio` (npm ci and vite build in studio/)');
 
-  // Idle: nothing in flight or queued, and the given revision (or a later one) on screen.
-  const settled = (after) => page.waitForFunction(
-    (r) => !window.studio.state.busy && !window.studio.state.pending && window.studio.state.revision > r,
-    after, { timeout: 120000 });
+  // Idle (nothing in flight, queued or about to be asked), with a later revision than
+  // the given one on screen.
+  const settled = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r, after);
 
   await page.click('#demo');
   await settled(0);
@@ -73,8 +76,7 @@ try {
   });
   await page.selectOption('#mode', 'variable-wire');
   await page.waitForFunction(() => window.studio.state.stats?.mode === 'variable-wire' && !window.studio.state.stats.preview &&
-    !window.studio.state.busy && !window.studio.state.pending, null,
-    { timeout: 120000 });
+    window.studio.idle());
   const before = await page.evaluate(() => ({ info: window.studio.resultInfo(), revision: window.studio.state.revision }));
   check(!before.info.lines && before.info.vertices > 0, 'variable wire shows a mesh');
   check(await page.inputValue('#tree') === 'shaped', 'a variable wire starts from the shaped tree, as the CLI\'s');
@@ -134,8 +136,7 @@ try {
   check(await page.inputValue('#tree') === 'random', 'leaving the variable wire gives the random tree back');
   await page.selectOption('#texture-size', '256');
   await settled(wireRevision);
-  await page.waitForFunction(() => window.studio.state.stats?.mode === 'duotone' && !window.studio.state.busy &&
-    !window.studio.state.pending, null, { timeout: 120000 });
+  await page.waitForFunction(() => window.studio.state.stats?.mode === 'duotone' && window.studio.idle());
   const duotone = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
   check(duotone.info.textured && duotone.stats.curves === 1, 'duotone shows a textured surface with one separating curve');
   check(duotone.info.texture === duotone.stats.texture, `the page shows the atlas of ${duotone.stats.texture}, not ${duotone.info.texture}`);
@@ -151,7 +152,7 @@ try {
 
   // A bad file: the page shows the reader's precise message and the server keeps going.
   await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });
-  await page.waitForSelector('#error:not([hidden])', { timeout: 30000 });
+  await page.waitForSelector('#error:not([hidden])');
   const message = await page.textContent('#error');
   check(/^bad\.obj:3: /.test(message), `unexpected error message for a bad file: ${message}`);
   check(problems.length === 0, `page errors: ${problems.join('; ')}`);

@@ -26,7 +26,7 @@ const browser = await chromium.launchPersistentContext(profile, {
 try {
   const page = browser.pages()[0] ?? await browser.newPage();
   await page.goto(url);
-  const idle = (after) => page.waitForFunction((r) => !window.studio.state.busy && !window.studio.state.pending && window.studio.state.revision > r, after, { timeout: 600000 });
+  const idle = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r, after, { timeout: 600000 });
   await page.setInputFiles('#file', { name: path.basename(meshFile), mimeType: 'application/octet-stream', buffer: readFileSync(meshFile) });
   await idle(0);
   const set = (id, value) => page.evaluate(([i, v]) => { const e = document.getElementById(i); e.value = v; e.dispatchEvent(new Event('input', { bubbles: true })); }, [id, value]);

@@ -141,8 +141,8 @@ TEST(CurveStream, WriterWritesThePointsOfTheWalkSoFar) {
         observer->seen(std::span<const int32_t>(made.cycle.order.data(), size_t(walked)),
                        std::span<const int32_t>(made.cycle.cycle_start.begin(), closed));
         const int64_t settled = settled_points(made.cycle, walked, option.samples);
-        for (int wait = 0; wait < 10000 && writer.points_written_while_walking() < settled; ++wait)
-          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        // However long the thread takes (a stuck one is ctest's timeout to find).
+        while (writer.points_written_while_walking() < settled) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         ASSERT_EQ(writer.points_written_while_walking(), settled) << name << " walked " << walked;
       }
       EXPECT_EQ(writer.finish(made.cycle), total * option.samples);
@@ -170,11 +170,11 @@ TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
   }
 }
 
-// A curve file of more than 250 MB is written around the page cache (O_DIRECT, src/io/
-// atomic_file.h), its points a part at a time as the walk shows them, the partial pages
-// between the parts through the page cache; the writer then seeks back to close each of
-// the two curves, which must wait for the direct writes there. Read back, it is still the
-// curve in memory.
+// A curve file of more than 250 MB is written around the page cache where the file
+// system allows (O_DIRECT, src/io/atomic_file.h), its points a part at a time as the walk
+// shows them, the partial pages between the parts through the page cache; the writer then
+// seeks back to close each of the two curves, which must wait for the direct writes
+// there. Read back, it is still the curve in memory.
 TEST(CurveStream, LargeFileReadsBackAsTheCurve) {
   const CurveResult made = make_curve(sphere_and_torus(12000, 12000), {.cycle = {.seed = 2}, .sample = false});
   const int64_t triangles = made.cycle.num_triangles();

@@ -27,11 +27,7 @@ protected:
     port_ = running_->port;
   }
   void TearDown() override { running_.reset(); }
-  httplib::Client client() const {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(120);
-    return c;
-  }
+  httplib::Client client() const { return test::client_of(port_); }
   std::string demo_session() {
     const auto res = client().Post("/api/demo", "", "application/json");
     EXPECT_TRUE(res && res->status == 200);
@@ -340,8 +336,7 @@ TEST_F(StudioServerTest, ForeignHostOrOriginGets403OverHttp) {
 
 TEST(StudioServerLimits, LargeUploadsAndResultsAreRefusedWithAMessage) {
   RunningServer running({.port = 0, .max_faces = 2, .max_result = 200'000});
-  httplib::Client c("127.0.0.1", running.port);
-  c.set_read_timeout(120);
+  httplib::Client c = test::client_of(running.port);
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
   const auto two = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", square, "square.obj", ""}});
   ASSERT_TRUE(two);

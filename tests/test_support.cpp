@@ -6,6 +6,8 @@
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
+#include <csignal>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,22 +55,28 @@ std::string read_file(const std::filesystem::path& path) {
   return ss.str();
 }
 
-CommandResult run_cli(const std::vector<std::string>& args) {
+CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64_t> max_file_size) {
   char out_template[] = "/tmp/meander_test_out_XXXXXX";
   char err_template[] = "/tmp/meander_test_err_XXXXXX";
   const int out_fd = mkstemp(out_template);
   const int err_fd = mkstemp(err_template);
   CommandResult result;
+  // Made before fork(): the child of a threaded program calls only what is safe there.
+  std::string cli = MEANDER_CLI;
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv{cli.data()};
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
     dup2(out_fd, 1);
     dup2(err_fd, 2);
-    std::vector<char*> argv;
-    std::string cli = MEANDER_CLI;
-    argv.push_back(cli.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    if (max_file_size) {
+      const rlimit size{rlim_t(*max_file_size), rlim_t(*max_file_size)}, no_core{0, 0};
+      setrlimit(RLIMIT_FSIZE, &size);
+      setrlimit(RLIMIT_CORE, &no_core);
+      signal(SIGXFSZ, SIG_DFL);
+    }
     execv(cli.c_str(), argv.data());
     _exit(127);
   }

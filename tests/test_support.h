@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,12 +49,16 @@ std::string read_file(const std::filesystem::path& path);
 std::string test_name(std::string_view file);
 
 struct CommandResult {
-  int exit_code = -1;
+  int exit_code = -1; // 128 + the signal's number where a signal ended it
+
   std::string out;
   std::string err;
 };
 
-// Runs the meander CLI with the given arguments (no shell: each argument as is).
-CommandResult run_cli(const std::vector<std::string>& args);
+// Runs the meander CLI with the given arguments (no shell: each argument as is). With
+// `max_file_size`, no file it writes may grow past that many bytes: the kernel ends it
+// with SIGXFSZ at the write or reservation that would (RLIMIT_FSIZE), a kill at a point
+// that does not depend on timing.
+CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64_t> max_file_size = std::nullopt);
 
 } // namespace meander::test

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <charconv>
 #include <cstdio>
 #include <condition_variable>
@@ -14,7 +13,6 @@
 #include <optional>
 #include <sys/mman.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <system_error>
 #include <thread>
 #include <unistd.h>
@@ -42,33 +40,6 @@ mode_t new_file_mode() {
   return mode_t(0666 & ~mask);
 }
 
-// Replacing a file frees its blocks before rename() returns, and on a file system that
-// discards freed blocks (this VM's ext4, mounted with `discard`) that waits about 0.14 s
-// a GB: 0.3 s for the 10M-triangle curve written over the previous run's. So a large
-// target is swapped with the temporary file in one atomic step, and a detached process
-// removes the previous file, now under the temporary name, while the program goes on.
-// False (nothing done) where the target is small or absent, or the swap is refused.
-bool replace_in_background(const std::string& temp, const std::filesystem::path& target) {
-  constexpr off_t large = off_t(64) << 20;
-  struct stat info {};
-  if (::lstat(target.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink != 1 || info.st_size < large)
-    return false;
-  if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) return false;
-  // A grandchild, so that no zombie is left to a long-running parent: the child exits at
-  // once and init reaps the grandchild. Both call only what is safe after fork() in a
-  // threaded program.
-  const pid_t child = ::fork();
-  if (child == 0) {
-    if (::fork() == 0) ::unlink(temp.c_str());
-    ::_exit(0);
-  }
-  if (child < 0)
-    ::unlink(temp.c_str());
-  else
-    ::waitpid(child, nullptr, 0);
-  return true;
-}
-
 } // namespace
 
 // The O_DIRECT writer of fill(): `buffers` page-aligned buffers that the caller fills and
@@ -77,8 +48,6 @@ struct AtomicFile::Direct {
   static constexpr uint64_t page = 4096; // alignment of an O_DIRECT write's offset, size and memory
   static constexpr size_t chunk = size_t(4) << 20;
   static constexpr int buffers = 4;
-  // How long fill() waits for a buffer before it writes through the page cache instead.
-  static constexpr std::chrono::milliseconds patience{50};
   struct Job {
     char* data;
     uint64_t at;
@@ -161,13 +130,12 @@ struct AtomicFile::Direct {
     return 0;
   }
 
-  // An idle buffer, or null when none became idle within `patience` or a write failed
-  // (its errno in `failure`).
+  // An idle buffer once one is, or null once a write failed (its errno in `failure`).
   char* take(int& failure) {
     std::unique_lock lock(mutex);
-    changed.wait_for(lock, patience, [&] { return !idle.empty() || error != 0; });
+    changed.wait(lock, [&] { return !idle.empty() || error != 0; });
     failure = error;
-    if (idle.empty() || error != 0) return nullptr;
+    if (error != 0) return nullptr;
     char* data = idle.back();
     idle.pop_back();
     return data;
@@ -340,10 +308,6 @@ void AtomicFile::fill(uint64_t size, const Fill& make) {
       int failure = 0;
       char* buffer = direct_->take(failure);
       if (failure != 0) fail("cannot write", failure);
-      if (buffer == nullptr) { // the disk is behind: it would have been so before
-        cached(at + n);
-        continue;
-      }
       make(at - begin, n, buffer);
       direct_->queue({buffer, at, n});
       at += n;
@@ -379,8 +343,7 @@ void AtomicFile::close() {
 
 void AtomicFile::commit() {
   close();
-  if (!replace_in_background(temp_, target_) && std::rename(temp_.c_str(), target_.c_str()) != 0)
-    fail("cannot write", errno);
+  if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot write", errno);
   committed_ = true;
 }
 

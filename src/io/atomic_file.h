@@ -28,9 +28,9 @@
 // the page cache. Writing the 10M-triangle curve's 0.96 GB of edges during the spanning
 // forest made the forest 0.2 s slower through the page cache: the copy into it, finding
 // it free pages and writing them back; direct, its system time went 0.7-0.9 -> 0.3 s
-// (docs/benchmarks.md). A buffer that stays busy for long (a disk slower than the caller)
-// goes through the page cache instead of waiting, as it would have before, and where the
-// file system refuses O_DIRECT everything does.
+// (docs/benchmarks.md). The caller waits for a free buffer, so a disk slower than the
+// caller sets the pace, as it would through the page cache; where the file system refuses
+// O_DIRECT everything goes through the page cache.
 #pragma once
 
 #include "io/binary.h"

@@ -150,6 +150,9 @@ window.studio = {
   state,
   // The latency script (latency.mjs) times a preview and a full update through this.
   make: (preview) => make(preview),
+  // Nothing in flight, queued or about to be asked (a change within the debounce): what
+  // the browser test waits for, so that no pause of a busy machine can fool it.
+  idle: () => !state.busy && !state.pending && debounce === null,
   // What the browser test reads: the result in the scene.
   resultInfo() {
     if (!resultObject) return null;
@@ -373,6 +376,7 @@ function changed(event) {
   const slider = event?.target?.type === 'range';
   const dragging = slider && event.type === 'input', released = slider && event.type === 'change';
   debounce = setTimeout(() => {
+    debounce = null;
     if (!released) make(true);
     if (!dragging) make(false);
   }, 30);
