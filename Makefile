@@ -95,11 +95,11 @@ studio/dist/index.html: studio/package-lock.json studio/index.html studio/vite.c
 	cd studio && npm ci --no-audit --no-fund --loglevel=error && npm run --silent build > /dev/null
 
 # Debian's chromium for the studio's browser test (ctest studio_e2e, which skips with a
-# message only where it could not be installed).
+# message where it could not be installed, and fails under CI).
 browser:
 	@command -v chromium > /dev/null || { echo "make test: installing Debian's chromium for the studio's browser test"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq chromium \
-	  || echo "make test: chromium could not be installed: the studio's browser test will be skipped"; }
+	  || echo "make test: chromium could not be installed: the studio's browser test will be skipped (failed under CI)"; }
 
 bench: build
 	bench/run.sh

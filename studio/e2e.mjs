@@ -3,8 +3,8 @@
 // Starts `meander serve` on a free port, loads the demo model, switches to a variable
 // wire, moves the s slider and checks the wire in the scene changed, downloads the STL
 // and checks it is a valid binary STL, shows a duotone, shows a bad file's error, and saves
-// screenshots to OUTPUT_FOLDER/studio_e2e.png and studio_e2e_duotone.png. Exits 0 with a message, without testing, only when
-// Chromium is not installed.
+// screenshots to OUTPUT_FOLDER/studio_e2e.png and studio_e2e_duotone.png. Exits 0 with a
+// message, without testing, only when Chromium is not installed and CI is not set.
 import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -18,7 +18,13 @@ if (!binary || !outputFolder) {
 }
 const browserPath = process.env.CHROMIUM ?? '/usr/bin/chromium';
 if (!existsSync(browserPath)) {
-  console.log(`studio e2e: SKIPPED: Chromium is not installed at ${browserPath} (apt-get install chromium)`);
+  const message = `Chromium is not installed at ${browserPath} (apt-get install chromium)`;
+  // Under CI a missing browser fails the run: the suite must not pass by skipping.
+  if (process.env.CI) {
+    console.error(`studio e2e: FAILED: ${message}, and CI is set`);
+    process.exit(1);
+  }
+  console.log(`studio e2e: SKIPPED: ${message}`);
   process.exit(0);
 }
 

@@ -50,8 +50,8 @@ TEST(CliDuotone, ObjWithMtlAndTextureCurveAndRegions) {
 
 TEST(CliDuotone, GlbPassesTheKhronosValidatorPlainAndSubdivided) {
   MEANDER_REQUIRE_SHARED_MESHES();
-  if (!gltf_validator_installed())
-    GTEST_SKIP() << "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH";
+  MEANDER_REQUIRE(gltf_validator_installed(),
+                  "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH");
   const fs::path dir = output_dir();
   for (const std::vector<std::string>& extra : {std::vector<std::string>{"--tiles", "stripes"},
                                                  std::vector<std::string>{"--subdivide", "2", "--quad", "dual-simplest"},

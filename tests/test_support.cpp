@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <fcntl.h>
 #include <fstream>
@@ -14,6 +15,16 @@
 namespace meander::test {
 
 std::filesystem::path shared_meshes() { return MEANDER_SHARED_MESHES; }
+
+bool in_ci() { return std::getenv("CI") != nullptr; }
+
+std::string shared_meshes_missing() {
+  if (std::filesystem::is_directory(shared_meshes())) return "";
+  std::string reason = "real meshes not found at ";
+  reason += shared_meshes().string();
+  reason += " (configure with -DMEANDER_SHARED_MESHES=...)";
+  return reason;
+}
 
 namespace {
 

@@ -28,12 +28,25 @@ std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f
 // vertices they use: a small piece of a large mesh, where something happens, for a test.
 PolygonMesh crop(const PolygonMesh& mesh, Vec3 centre, double radius);
 
-#define MEANDER_REQUIRE_SHARED_MESHES()                                                                 \
+// Whether the environment variable CI is set (as in CI runs): a dependency a test needs
+// and does not find is then a failure, not a skip, so that the suite cannot pass by
+// skipping.
+bool in_ci();
+
+// Skips the test (fails it under CI) with `reason` unless `found`.
+#define MEANDER_REQUIRE(found, reason)                                                                  \
   do {                                                                                                  \
-    if (!std::filesystem::is_directory(::meander::test::shared_meshes()))                              \
-      GTEST_SKIP() << "real meshes not found at " << ::meander::test::shared_meshes()                  \
-                   << " (configure with -DMEANDER_SHARED_MESHES=...)";                                  \
+    if (!(found)) {                                                                                     \
+      if (::meander::test::in_ci()) GTEST_FAIL() << (reason) << " (CI is set: missing is a failure)"; \
+      GTEST_SKIP() << (reason);                                                                        \
+    }                                                                                                   \
   } while (0)
+
+// Empty when shared_meshes() is a folder, else why the tests that need it cannot run.
+std::string shared_meshes_missing();
+
+#define MEANDER_REQUIRE_SHARED_MESHES()                                                                 \
+  MEANDER_REQUIRE(::meander::test::shared_meshes_missing().empty(), ::meander::test::shared_meshes_missing())
 
 // An empty folder for the current test: build/tests/output/<Suite>.<Test>/.
 std::filesystem::path output_dir();

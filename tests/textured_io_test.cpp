@@ -303,8 +303,8 @@ TEST(Gltf, BufferUriNamingAFolderIsRefused) {
 }
 
 TEST(Glb, KhronosValidatorFindsNoErrorsOrWarnings) {
-  if (!test::gltf_validator_installed())
-    GTEST_SKIP() << "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH";
+  MEANDER_REQUIRE(test::gltf_validator_installed(),
+                  "glTF validator not installed: run `npm ci` in tests/ (make test does) with node on the PATH");
   const fs::path dir = output_dir();
   PolygonMesh with_unused_vertex = torus(400);
   with_unused_vertex.positions.push_back({3, 3, 3});
