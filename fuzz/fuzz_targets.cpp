@@ -120,7 +120,7 @@ std::string curve_target(std::span<const uint8_t> input) {
   Bytes bytes(input);
   CurveJob job;
   job.quadrangulation = Quadrangulation(bytes.byte() % 3);
-  job.cycle.tree = TreeStrategy(bytes.byte() % 4);
+  job.cycle.tree = TreeStrategy(bytes.byte() % 5); // all five strategies, shaped too
   job.cycle.seed = bytes.byte();
   job.curve.smoothing = Smoothing(bytes.byte() % 3);
   job.curve.samples = 1 + bytes.byte() % 4;

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <thread>
 
@@ -21,7 +22,22 @@ struct ServeArgs {
   int64_t max_faces = StudioServerOptions{}.max_faces;
   int64_t max_result = StudioServerOptions{}.max_result;
   bool open = false;
+  std::filesystem::path page;
 };
+
+// The built page, found at run time beside the program: installed, PREFIX/bin/meander
+// serves PREFIX/share/meander/studio; in a build tree, BUILD/meander serves
+// BUILD/share/meander/studio, which the build copies from studio/dist. Empty (a notice
+// in place of the page) when neither holds an index.html.
+std::filesystem::path page_beside_program() {
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return {};
+  for (const auto& page : {program.parent_path().parent_path() / "share/meander/studio",
+                           program.parent_path() / "share/meander/studio"})
+    if (std::filesystem::is_regular_file(page / "index.html", error)) return page;
+  return {};
+}
 
 // Every update allocates the same large arrays again. glibc hands blocks of 128 KiB and
 // more back to the kernel when they are freed, and on this kind of virtual machine a
@@ -41,7 +57,7 @@ void run_serve(const ServeArgs& a) {
   StudioServer server({.host = a.host,
                        .port = a.port,
                        .max_upload = a.max_upload,
-                       .page = MEANDER_STUDIO_PAGE,
+                       .page = a.page.empty() ? page_beside_program() : a.page,
                        .max_faces = a.max_faces,
                        .max_result = a.max_result});
   const int port = server.bind();
@@ -86,6 +102,9 @@ Command add_serve_command(CLI::App& parent) {
                   "largest result in curve points, triangles and texture pixels (bigger requests get HTTP 413)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app->add_flag("--open", args->open, "open the page in the default browser");
+  app->add_option("--page", args->page,
+                  "folder of the built page (default: share/meander/studio beside the program, as installed or built)")
+      ->check(CLI::ExistingDirectory);
   return {app, [args] { run_serve(*args); }};
 }
 
