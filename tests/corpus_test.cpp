@@ -1,8 +1,10 @@
 // The adversarial corpus (tests/corpus/): malformed and awkward files, each given to
 // `meander curve` as a user would, with the outcome tests/corpus/EXPECTED states for it:
 // the exit code and the exact lines on stderr (the refusal naming the file and position,
-// or the repairs made). A refused file leaves no output; an accepted one leaves a curve.
+// or the repairs made). A refused file leaves no output; an accepted one leaves a curve
+// whose cycle the independent checker (certificate.h) certifies.
 // Every file of the folder must have an entry, and every entry a file.
+#include "certificate.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -62,14 +64,25 @@ class CorpusFile : public ::testing::TestWithParam<std::string> {};
 TEST_P(CorpusFile, HasItsExpectedOutcome) {
   const Expected expected = read_expected().at(GetParam());
   const std::string input = (corpus / GetParam()).string();
-  const std::filesystem::path output = test::output_dir() / "curve.obj";
+  const std::filesystem::path dir = test::output_dir(), output = dir / "curve.obj";
   const test::CommandResult result = test::run_cli({"curve", input, "-o", output.string()});
   EXPECT_EQ(result.exit_code, expected.exit_code);
   EXPECT_EQ(result.err, replace_all(expected.err, "$IN", input));
   EXPECT_EQ(std::filesystem::exists(output), result.exit_code == 0);
-  if (result.exit_code == 0) {
-    EXPECT_NE(test::read_file(output).find("\nl "), std::string::npos);
-  }
+  if (result.exit_code != 0) return;
+  // The curve of an accepted file, and its cycle's certificate, as the independent
+  // checker reads them (certificate.h): every triangle once, neighbours sharing an edge,
+  // no edge between two cycles, a closed curve per cycle on its triangles.
+  const std::filesystem::path triangles = dir / "cycle.obj";
+  const test::CommandResult certified = test::run_cli({"curve", input, "-o", output.string(), "--triangles", triangles.string()});
+  ASSERT_EQ(certified.exit_code, 0) << certified.err;
+  const test::ObjGroups certificate = test::parse_obj_groups(triangles), curve = test::parse_obj_groups(output);
+  const test::CertificateFacts facts = test::check_certificate(certificate);
+  EXPECT_EQ(facts.problem, "");
+  EXPECT_GE(facts.cycles, 1);
+  ASSERT_EQ(int(curve.lines.size()), facts.cycles);
+  for (const auto& l : curve.lines) EXPECT_TRUE(l.size() >= 3 && l.front() == l.back()) << "each curve is a closed l element";
+  EXPECT_LT(test::curve_distance_ratio(curve, certificate), 0.25);
 }
 
 std::vector<std::string> corpus_files() {
