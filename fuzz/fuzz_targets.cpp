@@ -1,10 +1,13 @@
 #include "fuzz_targets.h"
 
 #include "meander/check.h"
+#include "meander/duotone.h"
 #include "meander/error.h"
 #include "meander/pipeline.h"
 #include "meander/studio.h"
-#include "meander/studio_server.h"
+#include "meander/textured_io.h"
+#include "meander/wire.h"
+#include "studio_server.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +16,7 @@
 #include <cstring>
 #include <set>
 #include <string_view>
+#include <unistd.h>
 
 namespace meander::fuzz {
 
@@ -75,6 +79,35 @@ std::string repair_problem(const PolygonMesh& mesh, RepairResult& result) {
   return {};
 }
 
+// A small mesh of arbitrary faces of 3 to 5 corners on points of a 4x4x4 grid: finite,
+// often coplanar or collinear, sometimes coincident.
+PolygonMesh grid_mesh(Bytes& bytes) {
+  PolygonMesh mesh;
+  mesh.positions.resize(4 + bytes.byte() % 24);
+  for (Vec3& p : mesh.positions) {
+    const uint8_t b = bytes.byte();
+    p = {float(b & 3), float((b >> 2) & 3), float((b >> 4) & 3)};
+  }
+  const int faces = 1 + bytes.byte() % 48;
+  for (int f = 0; f < faces; ++f) {
+    std::vector<int32_t> face(3 + bytes.byte() % 3);
+    for (int32_t& v : face) v = bytes.byte() % mesh.num_vertices();
+    mesh.add_face(face);
+  }
+  return mesh;
+}
+
+// What check_appearance says of a textured mesh Meander made ("" when it fits): a
+// refusal there is a finding, not a correct refusal of the input.
+std::string appearance_problem(const TexturedMesh& textured) {
+  try {
+    check_appearance(textured.mesh, textured.appearance, "fuzz");
+    return {};
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+}
+
 template <class F> std::string refusals_pass(F body) {
   try {
     return body();
@@ -127,19 +160,7 @@ std::string curve_target(std::span<const uint8_t> input) {
   // As `meander wire --method variable` makes it: polygons split, caps flipped, needles
   // and folds collapsed.
   if (bytes.byte() % 2) job.slab_mesh = SlabMeshOptions{};
-  PolygonMesh mesh;
-  // Points of a 4x4x4 grid: finite, often coplanar or collinear, sometimes coincident.
-  mesh.positions.resize(4 + bytes.byte() % 24);
-  for (Vec3& p : mesh.positions) {
-    const uint8_t b = bytes.byte();
-    p = {float(b & 3), float((b >> 2) & 3), float((b >> 4) & 3)};
-  }
-  const int faces = 1 + bytes.byte() % 48;
-  for (int f = 0; f < faces; ++f) {
-    std::vector<int32_t> face(3 + bytes.byte() % 3);
-    for (int32_t& v : face) v = bytes.byte() % mesh.num_vertices();
-    mesh.add_face(face);
-  }
+  PolygonMesh mesh = grid_mesh(bytes);
   return refusals_pass([&]() -> std::string {
     RepairResult repaired;
     if (std::string problem = repair_problem(mesh, repaired); !problem.empty()) return problem;
@@ -172,6 +193,110 @@ std::string curve_target(std::span<const uint8_t> input) {
     if (result.curves.size() != cycle.num_cycles()) return "not one curve per cycle";
     for (const Vec3& p : result.curves.points)
       if (!is_finite(p)) return "a curve point is not finite";
+    return {};
+  });
+}
+
+std::string wire_target(std::span<const uint8_t> input) {
+  Bytes bytes(input);
+  const bool variable = bytes.byte() % 2;
+  const WireShape shape = WireShape(bytes.byte() % 2);
+  CurveJob job{.cycle = {.tree = TreeStrategy(bytes.byte() % 5), .seed = bytes.byte()},
+               .curve = {.smoothing = Smoothing(bytes.byte() % 3), .samples = 1 + bytes.byte() % 3}};
+  ConstantWireOptions constant{.shape = shape, .sides = 3 + bytes.byte() % 6, .curve = job.curve};
+  if (const uint8_t r = bytes.byte(); r != 0) constant.radius = r / 256.0; // 0: auto
+  const VariableWireOptions options{.shape = shape, .s = bytes.byte() / 255.0, .t = bytes.byte() / 255.0,
+                                    .thickness = (bytes.byte() % 4) * 0.05, .levels = bytes.byte() % 3};
+  // As `meander wire --method variable` prepares the mesh for its slabs.
+  if (variable) job.slab_mesh = SlabMeshOptions{};
+  PolygonMesh mesh = grid_mesh(bytes);
+  return refusals_pass([&]() -> std::string {
+    RepairResult repaired;
+    if (std::string problem = repair_problem(mesh, repaired); !problem.empty()) return problem;
+    const CurveResult curve = make_curve(std::move(repaired.mesh), std::move(repaired.connectivity), job);
+    const int64_t triangles = curve.cycle.num_triangles();
+    PolygonMesh wire;
+    int64_t expected = 0;
+    if (variable) {
+      wire = variable_wire(curve.quads, curve.cycle, options).mesh;
+      expected = variable_wire_triangles(triangles, options);
+    } else {
+      ConstantWire made = constant_wire(curve.quads, curve.cycle, constant);
+      // No radius avoids a self-intersection: no wire, and the radius says so.
+      if (made.mesh.num_faces() == 0) return made.radius == 0 && !constant.radius ? "" : "an empty wire of a given radius";
+      wire = std::move(made.mesh);
+      expected = constant_wire_triangles(triangles, constant);
+    }
+    if (std::string problem = mesh_problem(wire, false); !problem.empty()) return "wire: " + problem;
+    int64_t made = 0;
+    for (int32_t f = 0; f < wire.num_faces(); ++f) made += wire.face_size(f) - 2;
+    if (made != expected)
+      return "the wire has " + std::to_string(made) + " triangles, not the " + std::to_string(expected) + " announced";
+    return {};
+  });
+}
+
+std::string duotone_target(std::span<const uint8_t> input) {
+  Bytes bytes(input);
+  const DuotoneOptions options{.quadrangulation = Quadrangulation(bytes.byte() % 3),
+                               .rule = DuotoneRule(bytes.byte() % 2),
+                               .tree = TreeStrategy(bytes.byte() % 4),
+                               .seed = bytes.byte()};
+  const TileOptions tiles{.style = TileStyle(bytes.byte() % 5), .texture_size = 64};
+  const PolygonMesh mesh = grid_mesh(bytes);
+  return refusals_pass([&]() -> std::string {
+    RepairResult repaired;
+    if (std::string problem = repair_problem(mesh, repaired); !problem.empty()) return problem;
+    const size_t components = inspect(repaired.mesh).components.size();
+    const Duotone d = make_duotone(repaired.mesh, repaired.connectivity, options);
+    for (int32_t q = 0; q < d.quads.num_quads(); ++q) {
+      if (d.quads.is_half(q)) continue;
+      const auto& c = d.quads.quads[size_t(q)];
+      for (int k = 0; k < 4; ++k)
+        if (d.color[size_t(c[size_t(k)])] == d.color[size_t(c[size_t((k + 1) % 4)])])
+          return "quad " + std::to_string(q) + ": a side joins two corners of one colour";
+    }
+    if (size_t(d.cycle.num_cycles()) != components)
+      return std::to_string(d.cycle.num_cycles()) + " separating loops for " + std::to_string(components) + " components";
+    const Polylines curves = separating_curves(d, tiles.style);
+    if (size_t(curves.size()) != components) return "not one separating curve per component";
+    for (const Vec3& p : curves.points)
+      if (!is_finite(p)) return "a separating curve's point is not finite";
+    for (const PolygonMesh& region : duotone_regions(d, tiles.style))
+      if (region.num_faces() > 0)
+        if (std::string problem = mesh_problem(region, false); !problem.empty()) return "region: " + problem;
+    return appearance_problem(duotone_surface(d, tiles));
+  });
+}
+
+std::string textured_obj_target(std::span<const uint8_t> input) {
+  // A folder of this process's own, with a texture that map_Kd may name.
+  static const struct Folder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("meander_fuzz_obj_" + std::to_string(::getpid()));
+    Folder() {
+      std::filesystem::create_directories(path);
+      write_png({.width = 2, .height = 1, .has_alpha = true, .rgba = {255, 0, 0, 255, 0, 0, 255, 128}}, path / "t.png");
+    }
+    ~Folder() { std::filesystem::remove_all(path); }
+  } folder;
+  const std::string_view all(reinterpret_cast<const char*>(input.data()), input.size());
+  const size_t split = std::min(all.find('\0'), all.size());
+  write_bytes(folder.path / "m.mtl", all.substr(std::min(split + 1, all.size())));
+  write_bytes(folder.path / "f.obj", all.substr(0, split));
+  return refusals_pass([&]() -> std::string {
+    const TexturedMesh textured = read_textured_mesh(folder.path / "f.obj");
+    if (std::string problem = mesh_problem(textured.mesh, false); !problem.empty()) return "mesh: " + problem;
+    return appearance_problem(textured);
+  });
+}
+
+std::string image_target(std::span<const uint8_t> input) {
+  return refusals_pass([&]() -> std::string {
+    const Texture t = read_texture({reinterpret_cast<const char*>(input.data()), input.size()}, "fuzz");
+    if (t.width < 1 || t.height < 1 || t.rgba.size() != size_t(t.width) * size_t(t.height) * 4)
+      return "a " + std::to_string(t.width) + "x" + std::to_string(t.height) + " texture of " +
+             std::to_string(t.rgba.size()) + " bytes";
     return {};
   });
 }

@@ -30,6 +30,29 @@ std::string repair_target(std::span<const uint8_t> bytes);
 // component, one finite closed curve per cycle.
 std::string curve_target(std::span<const uint8_t> bytes);
 
+// A small mesh as curve_target makes it, then a wire of the kind, shape and options the
+// bytes pick (constant: radius given or automatic; variable: s, t, thickness, levels):
+// indices in range, finite positions, and exactly the triangles constant_wire_triangles
+// or variable_wire_triangles announce; an empty constant wire only where no automatic
+// radius exists.
+std::string wire_target(std::span<const uint8_t> bytes);
+
+// A small mesh as curve_target makes it, then its duotone under the quadrangulation,
+// rule, tree, seed and tile style the bytes pick: every quad side joins the two colours,
+// one separating loop and one finite curve per component, well-formed colour regions,
+// and a textured surface that check_appearance accepts.
+std::string duotone_target(std::span<const uint8_t> bytes);
+
+// An OBJ with its MTL: the bytes before the first NUL are the OBJ (its `mtllib m.mtl`
+// names the rest), those after it the MTL, beside a 2x1 PNG `t.png` that map_Kd may
+// name. read_textured_mesh refuses them with Meander's error or returns a mesh as io.h
+// promises with an appearance that check_appearance accepts.
+std::string textured_obj_target(std::span<const uint8_t> bytes);
+
+// read_texture on the bytes (JPEG through libjpeg-turbo; PNG, BMP, TGA, GIF, ... through stb_image):
+// refused, or an image of at least one pixel with 4 bytes per pixel.
+std::string image_target(std::span<const uint8_t> bytes);
+
 // The body of the studio's POST /api/make (parse_make_request): refused with a
 // UsageError, or parameters within the CLI's ranges.
 std::string make_request_target(std::span<const uint8_t> bytes);

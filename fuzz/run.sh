@@ -32,7 +32,7 @@ else
   shift 2
 fi
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_read_obj fuzz_read_ply fuzz_read_stl fuzz_read_off fuzz_read_gltf fuzz_repair fuzz_curve fuzz_studio_request fuzz_studio_upload fuzz_studio_http)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_read_obj fuzz_read_ply fuzz_read_stl fuzz_read_off fuzz_read_gltf fuzz_repair fuzz_curve fuzz_wire fuzz_duotone fuzz_textured_obj fuzz_image fuzz_studio_request fuzz_studio_upload fuzz_studio_http)
 meshes=${MEANDER_SHARED_MESHES:-$root/../shared/meshes}
 
 # Links the files of folder $1 with one of the extensions $3... and at most 64 KiB into $2.
@@ -78,8 +78,12 @@ for target in "${targets[@]}"; do
     corpus=$work/check-corpus
     rm -rf "$corpus" && mkdir -p "$corpus"
     count=$(find -L "${seeds[@]}" -type f | wc -l)
-    echo "fuzz: $target: $count seeds, then $runs runs from seed 1"
-    flags=(-runs=$((count + runs)) -seed=1 -reload=0 -use_cmp=0 -use_memmem=0 -timeout=1200 -rss_limit_mb=0 -malloc_limit_mb=1024)
+    # fuzz_image soon makes inputs that decode pictures of up to 16384 x 16384 pixels,
+    # seconds each under the sanitizers: a tenth of the runs, at most 2,000.
+    target_runs=$runs
+    [ "$target" = fuzz_image ] && target_runs=$(( runs / 10 < 2000 ? runs / 10 : 2000 ))
+    echo "fuzz: $target: $count seeds, then $target_runs runs from seed 1"
+    flags=(-runs=$((count + target_runs)) -seed=1 -reload=0 -use_cmp=0 -use_memmem=0 -timeout=1200 -rss_limit_mb=0 -malloc_limit_mb=1024)
     fixed=("${one_core[@]}")
   else
     corpus=$work/corpus

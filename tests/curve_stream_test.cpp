@@ -4,6 +4,7 @@
 #include "test_support.h"
 
 #include "meander/curve.h"
+#include "meander/curve_writer.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/pipeline.h"

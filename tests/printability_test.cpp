@@ -504,11 +504,10 @@ TEST(Printability, JsonAndSummary) {
 
 TEST(Printability, ReportFileIsWrittenWhole) {
   const std::filesystem::path path = test::output_dir() / "report.json";
-  write_printability_report(check_printability(cube_at({0, 0, 0})), path);
+  write_bytes(path, printability_json(check_printability(cube_at({0, 0, 0}))));
   const nlohmann::json j = nlohmann::json::parse(test::read_file(path));
   EXPECT_EQ(j["triangles"], 12);
-  EXPECT_THROW(write_printability_report(check_printability(cube_at({0, 0, 0})), test::output_dir() / "missing" / "r.json"),
-               IOError);
+  EXPECT_THROW(write_bytes(test::output_dir() / "missing" / "r.json", "{}"), IOError);
 }
 
 TEST(Printability, RefusesIndicesOutOfRange) {

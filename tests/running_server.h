@@ -2,7 +2,7 @@
 // destroyed (studio_server_test.cpp, studio_http_test.cpp).
 #pragma once
 
-#include "meander/studio_server.h"
+#include "studio_server.h"
 
 #include <httplib.h>
 

@@ -4,7 +4,7 @@
 // the connection, stays up, and the heap it holds stays bounded (heap_peak.h). Exact byte sequences go through
 // StudioServer::serve_bytes (the server's own connection code, from memory); connection
 // behaviour and memory through real sockets on a free port of 127.0.0.1.
-#include "meander/studio_server.h"
+#include "studio_server.h"
 #include "heap_peak.h"
 #include "running_server.h"
 #include "test_support.h"

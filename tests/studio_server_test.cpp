@@ -1,5 +1,5 @@
 // `meander serve` over real HTTP: the server on a free port of 127.0.0.1, httplib's client.
-#include "meander/studio_server.h"
+#include "studio_server.h"
 #include "running_server.h"
 #include "test_support.h"
 

@@ -2,6 +2,7 @@
 // read from memory with the CLI's messages, results made by the same calls, and files.
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/shapes.h"
 #include "meander/studio.h"
 #include "meander/wire.h"

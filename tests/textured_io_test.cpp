@@ -2,6 +2,7 @@
 // output; the Khronos validator's verdict on what we write; precise refusals.
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/shapes.h"
 #include "checker_quad.h"
 #include "gltf_validator.h"

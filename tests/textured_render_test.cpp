@@ -3,6 +3,7 @@
 // material files are refused with the file and line, exit code 1 and no picture.
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/render.h"
 #include "checker_quad.h"
 #include "test_support.h"

@@ -5,6 +5,7 @@
 #include "meander/duotone.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/render.h"
 #include "meander/subdivide.h"
 

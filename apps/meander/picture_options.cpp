@@ -1,5 +1,7 @@
 #include "picture_options.h"
 
+#include "meander/io.h"
+
 namespace meander::cli {
 
 void add_picture_options(CLI::App& app, PictureArgs& args, const std::string& picture, CLI::Option* needs) {

@@ -4,6 +4,7 @@
 
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/render.h"
 
 #include <array>

@@ -1,6 +1,6 @@
 #include "commands.h"
 
-#include "meander/studio_server.h"
+#include "studio_server.h"
 
 #include <malloc.h>
 

@@ -135,7 +135,7 @@ void run_wire(const WireArgs& a) {
   log.lap("report");
   write_mesh(wire, a.output);
   log.lap("write wire");
-  if (!a.report.empty()) write_printability_report(report, a.report);
+  if (!a.report.empty()) write_bytes(a.report, printability_json(report) + "\n");
   std::string picture_written;
   if (!a.png.empty()) {
     Scene scene;

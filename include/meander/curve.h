@@ -7,8 +7,7 @@
 
 #include <array>
 #include <cstdint>
-#include <filesystem>
-#include <memory>
+#include <span>
 #include <string_view>
 
 namespace meander {
@@ -46,43 +45,18 @@ Polylines smooth_curves(const Polylines& control, const CurveOptions& options = 
 // memory: what the pipeline uses on large meshes.
 Polylines cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options = {});
 
-// write_polylines(cycle_curves(quads, cycle, options), path), byte for byte, without the
-// curves in memory: each block of points is sampled as the writer reaches it (on all
-// cores for PLY), so only a few blocks exist at once instead of 12 bytes a point (1.44 GB
-// for a 10M-triangle mesh at 4 samples). Returns the number of points written. Throws
-// what cycle_curves and write_polylines throw, a bad --samples before the file is made.
-int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
-                           const std::filesystem::path& path);
+// Points per control polygon segment for curves of `control_points` control points in
+// all: options.samples, or 1 for Smoothing::none. Throws UsageError if samples < 1 or
+// the curves would hold 2^31 points or more.
+int points_per_segment(int64_t control_points, const CurveOptions& options);
 
-// write_cycle_curves in two steps, so that the file is written while the cycles are
-// made: made from the quad mesh alone, the writer counts the points and, for PLY, writes
-// on a thread of its own the header and the edges as if the points made one closed curve
-// (a GB for a 10M-triangle mesh, beside the cycle's serial spanning tree), then the
-// points of the triangles that observer(), passed to hamiltonian_cycle, is shown walked
-// (beside the serial walk). finish() writes the points left, turns the last edge of
-// each curve back to its own first point when there are several, and commits. `quads`
-// must stay alive and unchanged until then; destroyed without finish(), the writer
-// leaves no file. The constructor throws a bad --samples and a file that cannot be made;
-// finish() what the thread met, and what write_cycle_curves throws.
-class CycleCurveWriter {
-public:
-  CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path);
-  ~CycleCurveWriter();
-  CycleCurveWriter(const CycleCurveWriter&) = delete;
-  CycleCurveWriter& operator=(const CycleCurveWriter&) = delete;
-
-  // For hamiltonian_cycle; null when the writer has no use for it (not a PLY).
-  const WalkObserver* observer() const;
-
-  // `cycle` must be hamiltonian_cycle(quads, ...). Returns the number of points written.
-  int64_t finish(const TriangleCycle& cycle);
-
-  // How many points the thread wrote before finish() (a figure for tests and benchmarks).
-  int64_t points_written_while_walking() const;
-
-private:
-  struct File;
-  std::unique_ptr<File> file_;
-};
+// Points [begin, end) of the closed curves through the control points of the cycle
+// triangles `order`, curve j made of order[start[j]] .. order[start[j + 1] - 1], points
+// counted over all curves, points_per_segment of them a segment, into dst[0, end - begin).
+// A point depends only on its segment's four control points, so any block gives the same
+// floats as cycle_curves, even while `order` is only the part of a walk made so far (a
+// streaming writer samples whatever block it writes). options must be valid.
+void sample_cycle_curves(const QuadMesh& quads, std::span<const int32_t> order, std::span<const int32_t> start,
+                         const CurveOptions& options, int64_t begin, int64_t end, Vec3* dst);
 
 } // namespace meander

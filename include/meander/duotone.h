@@ -21,7 +21,6 @@
 #pragma once
 
 #include "meander/hamiltonian.h"
-#include "meander/pipeline.h"
 #include "meander/quadrangulate.h"
 #include "meander/spanning_tree.h"
 #include "meander/textured_mesh.h"

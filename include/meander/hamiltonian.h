@@ -79,4 +79,8 @@ TriangleCycle triangle_loops(const QuadMesh& quads, std::vector<uint8_t> diagona
 // O(quads + triangles), plus a log factor in the number of cycles.
 std::string verify_cycle(const QuadMesh& quads, const TriangleCycle& cycle);
 
+// The certificate of the cycle: the triangulated quad mesh with its triangles in cycle
+// order, one group per cycle (write it with MeshWriteOptions::group_start = cycle_start).
+PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle);
+
 } // namespace meander

@@ -1,4 +1,5 @@
-// Reading and writing meshes and curves. Formats are chosen by the file's extension
+// Reading and writing meshes and curves, and writing pictures (textured meshes:
+// textured_io.h). Formats are chosen by the file's extension
 // (case-insensitive), then the content is checked to match it.
 //
 // Every refusal throws InputError (malformed content) or IOError (cannot open, read or
@@ -12,8 +13,8 @@
 // that name is left as it was. Output is deterministic (the same bytes for the same input).
 #pragma once
 
+#include "meander/image.h"
 #include "meander/mesh.h"
-#include "meander/textured_mesh.h"
 
 #include <filesystem>
 #include <span>
@@ -47,45 +48,6 @@ PolygonMesh read_mesh(const std::filesystem::path& path);
 
 // The same from bytes in memory; `name` stands for the file in messages.
 PolygonMesh read_mesh(std::string_view bytes, MeshFormat format, std::string_view name);
-
-// Reads a mesh with its appearance (textured_mesh.h):
-//  .obj  as read_mesh, plus `vt` texture coordinates, `mtllib` (MTL files relative to the
-//        OBJ's folder, read at that line) and `usemtl` (one material per face, several
-//        per mesh). From the MTL: newmtl, Kd (linear base colour) and map_Kd (a texture
-//        relative to the MTL's folder, options like -s skipped; PNG, JPEG, BMP, TGA...).
-//        Without mtllib the appearance is empty (a plain mesh) and usemtl is ignored;
-//        faces before the first usemtl get a light grey "default" material.
-//  .gltf/.glb  every triangle primitive (triangles, strips, fans; points and lines are
-//        skipped) of every mesh in the default scene (or scene 0), with the node
-//        transforms applied (winding reversed under a mirroring transform); POSITION,
-//        TEXCOORD_n for the base colour texture, baseColorFactor and baseColorTexture
-//        (embedded in the GLB, data: URIs, or files beside a .gltf). Exactly equal
-//        positions are welded into one vertex; texture coordinates stay per corner.
-//  other mesh formats: as read_mesh, with an empty appearance.
-// Refusals name the file and line that is wrong: "bunny.obj:3: mtllib 'x.mtl': x.mtl:
-// cannot open: No such file or directory", "x.mtl:5: map_Kd 'tex.png': tex.png: cannot
-// decode image: ...", "bunny.obj:7: usemtl 'red': no material of that name in the
-// mtllib files", "bunny.obj:9: face references texture coordinate 12 but only 4 exist",
-// "model.glb: <tinygltf's message>", "model.glb: mesh 0 primitive 1: POSITION: accessor 3
-// reaches past the end of its buffer view". IOError for files that cannot be opened,
-// InputError for malformed content.
-TexturedMesh read_textured_mesh(const std::filesystem::path& path);
-
-// Reads an image file (PNG, JPEG, BMP, TGA, ... as stb_image decodes them) as an RGBA8
-// texture. IOError if it cannot be opened, InputError("path: cannot decode image: ...").
-Texture read_texture(const std::filesystem::path& path);
-
-// Writes a mesh with its appearance (check_appearance must accept it, else UsageError):
-//  .obj  OBJ with v, vt and f v/vt, `usemtl` before each run of faces of one material,
-//        beside it NAME.mtl (newmtl, Kd, map_Kd) and the textures as PNG files
-//        NAME_texture.png (NAME_texture_K.png for material K when several have one), all
-//        referred to by relative paths. Without materials: the OBJ alone.
-//  .glb  one binary glTF 2.0 file: vertices split where texture coordinates differ
-//        (smooth normals kept across the seams), one primitive per used material, each
-//        texture embedded as PNG; double-sided, non-metallic materials.
-// Atomic as a whole: every file is written before any is renamed into place, and if a
-// rename fails the files already renamed are removed. Other extensions: UsageError.
-void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path);
 
 // Reads polylines (closed loops and open polylines, see Polylines), format by extension:
 //  .obj  `l` elements (v/vt indices, negative and forward indices as for faces); an `l`
@@ -139,5 +101,16 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
 // one-point polyline no edge (and no `l` if open). Atomic: no partial file is left.
 // Throws UsageError for any other extension.
 void write_polylines(const Polylines& curves, const std::filesystem::path& path);
+
+// Writes bytes as the file `path`. Atomic: no partial file is left. Throws IOError.
+void write_bytes(const std::filesystem::path& path, std::string_view bytes);
+
+// Throws UsageError("path: unknown image format ...") unless the path ends in .png (any
+// case): what write_png refuses, for callers that check before they render.
+void require_png_path(const std::filesystem::path& path);
+
+// Writes the image as PNG (RGB, or RGBA if it has alpha). Atomic: no partial file is
+// left. Throws UsageError if the extension is not .png, IOError if it cannot be written.
+void write_png(const Image& image, const std::filesystem::path& path);
 
 } // namespace meander

@@ -18,8 +18,6 @@
 
 namespace meander {
 
-enum class Quadrangulation { dual_simplest, catmull_clark, none };
-
 // Polygons of star_sides or more vertices split into stars of triangles
 // (star_polygons.h; 0: none), then the caps flipped as `caps` says (flip_caps.h), then
 // the needles collapsed as `needles` says (collapse_needles.h).
@@ -28,9 +26,6 @@ struct SlabMeshOptions {
   std::optional<CapFlipOptions> caps = CapFlipOptions{};
   std::optional<NeedleCollapseOptions> needles = NeedleCollapseOptions{};
 };
-
-// Parses "dual-simplest" | "catmull-clark" | "none"; throws UsageError otherwise.
-Quadrangulation parse_quadrangulation(std::string_view name);
 
 struct CurveJob {
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
@@ -70,9 +65,5 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times 
 // The same with the mesh's connectivity already known (RepairResult::connectivity); an
 // empty or mismatched one is rebuilt.
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times = nullptr);
-
-// The certificate of the cycle: the triangulated quad mesh with its triangles in cycle
-// order, one group per cycle (write it with MeshWriteOptions::group_start = cycle_start).
-PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle);
 
 } // namespace meander

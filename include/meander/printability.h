@@ -10,7 +10,6 @@
 
 #include <array>
 #include <cstdint>
-#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -119,8 +118,5 @@ std::string printability_json(const PrintabilityReport& report);
 // minimum thickness 0.061 (at vertex 17), bounding box 2.1 x 2.1 x 0.7 from (-1.05,
 // -1.05, -0.35): printable."
 std::string printability_summary(const PrintabilityReport& report);
-
-// Writes printability_json() to `path` atomically (no partial file). Throws IOError.
-void write_printability_report(const PrintabilityReport& report, const std::filesystem::path& path);
 
 } // namespace meander

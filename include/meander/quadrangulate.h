@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace meander {
@@ -60,5 +61,10 @@ QuadMesh quads_as_is(const PolygonMesh& mesh, const Connectivity& connectivity);
 // a quad mesh made by catmull_clark_quads or quads_as_is). Half-quad sides 0 and 1 do
 // not count: they do not exist.
 int32_t count_open_sides(const QuadMesh& quads);
+
+enum class Quadrangulation { dual_simplest, catmull_clark, none };
+
+// Parses "dual-simplest" | "catmull-clark" | "none"; throws UsageError otherwise.
+Quadrangulation parse_quadrangulation(std::string_view name);
 
 } // namespace meander

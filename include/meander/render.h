@@ -6,6 +6,7 @@
 // the number of threads. Tiles are rendered in parallel (oneTBB).
 #pragma once
 
+#include "meander/image.h"
 #include "meander/mesh.h"
 #include "meander/textured_mesh.h"
 
@@ -98,13 +99,6 @@ struct RenderOptions {
   Framing framing = Framing::bounds;
 };
 
-// An 8-bit image, rows top to bottom; rgba holds 4 bytes per pixel.
-struct Image {
-  int32_t width = 0, height = 0;
-  bool has_alpha = false; // written as RGBA if set, else RGB
-  std::vector<uint8_t> rgba;
-};
-
 // "front", "back", "left", "right", "top", "iso" or "AZ,EL" in degrees ("30,20").
 // Throws UsageError("view 'x': expected front, back, left, right, top, iso or AZ,EL in degrees").
 View parse_view(std::string_view text);
@@ -120,10 +114,6 @@ void parse_size(std::string_view text, int32_t& width, int32_t& height);
 // of range. Time: building the BVH is about linear in the triangles and curve segments;
 // then width * height * samples rays and a few ambient-occlusion rays each.
 Image render(const Scene& scene, const RenderOptions& options);
-
-// Writes the image as PNG (RGB, or RGBA if it has alpha). Atomic: no partial file is
-// left. Throws UsageError if the extension is not .png, IOError if it cannot be written.
-void write_png(const Image& image, const std::filesystem::path& path);
 
 // The file of frame `frame` (0-based) of a turntable of `frames`: "spin.png" becomes
 // "spin_007.png", the number zero-padded to at least 3 digits (4 from 1001 frames on).

@@ -5,6 +5,7 @@
 
 #include "io/atomic_file.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 
 #include <span>
 #include <string>

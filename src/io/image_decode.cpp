@@ -1,27 +1,86 @@
 #include "io/image_codec.h"
 #include "io/reader_support.h"
 
+#include <turbojpeg.h>
+
 #include <climits>
+#include <cstdint>
+#include <memory>
+#include <string>
 
 // Only memory is decoded: files are read (and their errors reported) by Meander.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_NO_STDIO
 #define STBI_FAILURE_USERMSG
+#define STBI_NO_JPEG
 #include <stb/stb_image.h>
 
 namespace meander::io {
+namespace {
+
+constexpr int max_side = 16384;
+
+// A texture has at least one pixel (a BMP may declare a height of 0, found by fuzz_image).
+void check_size(int width, int height, std::string_view name) {
+  if (width < 1 || height < 1 || width > max_side || height > max_side)
+    fail_input(name, "cannot decode image: " + std::to_string(width) + "x" + std::to_string(height) +
+                         " pixels (1 to " + std::to_string(max_side) + " on a side)");
+}
+
+// JPEG through libjpeg-turbo: Debian 12's stb_image (a 2022-09 snapshot) reads and writes
+// past its Huffman tables on crafted files (nothings/stb#1289 and #1291, fixed upstream
+// later), as fuzz_image found within seconds. A warning (a truncated file) still gives
+// the picture, as image viewers show it.
+Texture decode_jpeg(std::string_view bytes, std::string_view name) {
+  const std::unique_ptr<void, int (*)(tjhandle)> decoder(tjInitDecompress(), tjDestroy);
+  if (!decoder) fail_input(name, "cannot decode image: cannot start the JPEG decoder");
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const auto failed = [&] { return std::string("cannot decode image: ") + tjGetErrorStr2(decoder.get()); };
+  int width = 0, height = 0, subsampling = 0, colorspace = 0;
+  if (tjDecompressHeader3(decoder.get(), data, static_cast<unsigned long>(bytes.size()), &width, &height, &subsampling,
+                          &colorspace) != 0)
+    fail_input(name, failed());
+  check_size(width, height, name);
+  Texture texture{.width = width, .height = height};
+  texture.rgba.resize(size_t(width) * size_t(height) * 4);
+  if (tjDecompress2(decoder.get(), data, static_cast<unsigned long>(bytes.size()), texture.rgba.data(), width, 0, height,
+                    TJPF_RGBA, 0) != 0 &&
+      tjGetErrorCode(decoder.get()) != TJERR_WARNING)
+    fail_input(name, failed());
+  return texture;
+}
+
+// Whether every chunk of a PNG fits in the bytes that follow its header: stb_image trusts
+// an IDAT's length and allocates it before reading (1.7 GB for a 100-byte file, found by
+// fuzz_image). The chunk walk stops at IEND; what follows it is ignored, as by stb.
+bool png_chunks_fit(std::string_view bytes) {
+  const auto be32 = [&](size_t at) {
+    uint32_t v = 0;
+    for (size_t k = 0; k < 4; ++k) v = v << 8 | uint8_t(bytes[at + k]);
+    return v;
+  };
+  for (size_t at = 8; at + 12 <= bytes.size();) {
+    const uint64_t length = be32(at);
+    if (length > bytes.size() - at - 12) return false;
+    if (bytes.substr(at + 4, 4) == "IEND") return true;
+    at += 12 + length;
+  }
+  return true; // truncated: stb says so
+}
+
+} // namespace
 
 Texture decode_image(std::string_view bytes, std::string_view name) {
-  constexpr int max_side = 16384;
   if (bytes.size() > size_t(INT_MAX)) fail_input(name, "cannot decode image: file too large");
+  if (bytes.starts_with("\xFF\xD8")) return decode_jpeg(bytes, name);
+  if (bytes.starts_with("\x89PNG\r\n\x1A\n") && !png_chunks_fit(bytes))
+    fail_input(name, "cannot decode image: a PNG chunk is longer than the file");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
     fail_input(name, std::string("cannot decode image: ") + stbi_failure_reason());
-  if (width > max_side || height > max_side)
-    fail_input(name, "cannot decode image: " + std::to_string(width) + "x" + std::to_string(height) +
-                         " pixels (at most " + std::to_string(max_side) + " on a side)");
+  check_size(width, height, name);
   stbi_uc* pixels = stbi_load_from_memory(data, size, &width, &height, &channels, 4);
   if (!pixels) fail_input(name, std::string("cannot decode image: ") + stbi_failure_reason());
   Texture texture{.width = width, .height = height};

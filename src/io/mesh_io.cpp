@@ -62,8 +62,10 @@ TexturedMesh read_textured_mesh(const std::filesystem::path& path) {
 Texture read_texture(const std::filesystem::path& path) {
   const io::MappedFile file(path);
   if (file.bytes().empty()) io::fail_input(path.string(), "file is empty");
-  return io::decode_image(file.bytes(), path.string());
+  return read_texture(file.bytes(), path.string());
 }
+
+Texture read_texture(std::string_view bytes, std::string_view name) { return io::decode_image(bytes, name); }
 
 void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path) {
   const std::string extension = io::lowercase_extension(path);
@@ -104,6 +106,12 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
   case MeshFormat::gltf: io::write_glb(mesh, options, out); break;
   case MeshFormat::threemf: io::write_3mf(mesh, path.string(), out); break;
   }
+  out.commit();
+}
+
+void write_bytes(const std::filesystem::path& path, std::string_view bytes) {
+  io::AtomicFile out(path);
+  out.bytes(bytes.data(), bytes.size());
   out.commit();
 }
 

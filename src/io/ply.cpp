@@ -3,7 +3,7 @@
 #include "io/formats.h"
 #include "io/reader_support.h"
 #include "io/text_cursor.h"
-#include "chunks.h"
+#include "core/chunks.h"
 
 #include <algorithm>
 #include <atomic>

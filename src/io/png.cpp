@@ -1,8 +1,7 @@
-#include "io/atomic_file.h"
 #include "io/formats.h"
 #include "io/image_codec.h"
 #include "meander/error.h"
-#include "meander/render.h"
+#include "meander/io.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO
@@ -26,9 +25,13 @@ std::string encode_png(const uint8_t* pixels, int32_t width, int32_t height, int
 
 } // namespace io
 
-void write_png(const Image& image, const std::filesystem::path& path) {
+void require_png_path(const std::filesystem::path& path) {
   if (const std::string extension = io::lowercase_extension(path); extension != ".png")
     throw UsageError(path.string() + ": unknown image format '" + extension + "' (expected .png)");
+}
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  require_png_path(path);
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * image.height * 4)
     throw UsageError(path.string() + ": image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                      " pixels has " + std::to_string(image.rgba.size()) + " bytes");
@@ -40,9 +43,7 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     pixels = rgb.data();
   }
   const std::string png = io::encode_png(pixels, image.width, image.height, image.has_alpha ? 4 : 3, path.string());
-  io::AtomicFile out(path);
-  out.bytes(png.data(), png.size());
-  out.commit();
+  write_bytes(path, png);
 }
 
 } // namespace meander

@@ -1,7 +1,7 @@
 #include "meander/render.h"
 
-#include "io/formats.h"
 #include "meander/error.h"
+#include "meander/io.h"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -591,8 +591,7 @@ std::vector<std::filesystem::path> write_turntable(const Scene& scene, const Ren
   constexpr int32_t max_frames = 100000;
   if (frames < 1 || frames > max_frames)
     throw UsageError("turntable of " + std::to_string(frames) + " frames: expected 1.." + std::to_string(max_frames));
-  if (const std::string extension = io::lowercase_extension(path); extension != ".png")
-    throw UsageError(path.string() + ": unknown image format '" + extension + "' (expected .png)");
+  require_png_path(path);
   std::vector<std::filesystem::path> written;
   for (int32_t k = 0; k < frames; ++k) {
     RenderOptions frame = options;

@@ -1,6 +1,5 @@
 #include "meander/printability.h"
 
-#include "io/atomic_file.h"
 #include "meander/check.h"
 #include "meander/error.h"
 #include "triangle_bvh.h"
@@ -670,13 +669,6 @@ std::string printability_summary(const PrintabilityReport& r) {
   }
   s += r.printable() ? ": printable." : ": not printable.";
   return s;
-}
-
-void write_printability_report(const PrintabilityReport& report, const std::filesystem::path& path) {
-  io::AtomicFile out(path);
-  out.text(printability_json(report));
-  out.put('\n');
-  out.commit();
 }
 
 } // namespace meander

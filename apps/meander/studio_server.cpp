@@ -1,4 +1,4 @@
-#include "meander/studio_server.h"
+#include "studio_server.h"
 
 #include "meander/error.h"
 

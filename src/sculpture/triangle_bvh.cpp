@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <bit>
+#include <cmath>
 
 namespace meander {
 namespace {
@@ -120,7 +121,10 @@ TriangleBvh::TriangleBvh(std::span<const Vec3> positions, std::span<const std::a
   float scale[3];
   for (int k = 0; k < 3; ++k) {
     const float size = extent.hi[k] - extent.lo[k];
-    scale[k] = size > 0 ? float((1 << kMortonBits) - 1) / size : 0;
+    // An extent so thin that the scale overflows (a flat wire of a tiny radius) is one
+    // cell, as an empty one is: infinity times the 0 of a box at its low side is NaN.
+    const float s = float((1 << kMortonBits) - 1) / size;
+    scale[k] = size > 0 && std::isfinite(s) ? s : 0;
   }
   std::vector<uint64_t> keys(static_cast<size_t>(n));
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<int32_t>& r) {

@@ -1,6 +1,7 @@
 #include "meander/pipeline.h"
 
 #include "meander/connectivity.h"
+#include "meander/curve_writer.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/star_polygons.h"
@@ -10,13 +11,6 @@
 #include <string>
 
 namespace meander {
-
-Quadrangulation parse_quadrangulation(std::string_view name) {
-  if (name == "dual-simplest") return Quadrangulation::dual_simplest;
-  if (name == "catmull-clark") return Quadrangulation::catmull_clark;
-  if (name == "none") return Quadrangulation::none;
-  throw UsageError("unknown quadrangulation '" + std::string(name) + "' (expected dual-simplest, catmull-clark or none)");
-}
 
 namespace {
 
@@ -101,19 +95,6 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     }
   }
   return result;
-}
-
-PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle) {
-  PolygonMesh m;
-  m.positions = quads.positions;
-  m.face_vertices.reserve(cycle.order.size() * 3);
-  m.face_start.resize(cycle.order.size() + 1);
-  for (size_t t = 0; t < cycle.order.size(); ++t) {
-    const auto corners = cycle_triangle(quads, cycle.order[t]);
-    m.face_vertices.insert(m.face_vertices.end(), corners.begin(), corners.end());
-    m.face_start[t + 1] = int32_t(3 * (t + 1));
-  }
-  return m;
 }
 
 } // namespace meander

@@ -1,7 +1,6 @@
 #include "meander/wire.h"
 
 #include "meander/error.h"
-#include "meander/pipeline.h"
 #include "meander/printability.h"
 #include "meander/subdivide.h"
 

@@ -1,8 +1,8 @@
 #include "meander/duotone.h"
 
 #include "meander/error.h"
-#include "random.h"
-#include "union_find.h"
+#include "core/random.h"
+#include "core/union_find.h"
 
 #include <algorithm>
 #include <cmath>

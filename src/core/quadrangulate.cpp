@@ -199,4 +199,11 @@ int32_t count_open_sides(const QuadMesh& q) {
   return open;
 }
 
+Quadrangulation parse_quadrangulation(std::string_view name) {
+  if (name == "dual-simplest") return Quadrangulation::dual_simplest;
+  if (name == "catmull-clark") return Quadrangulation::catmull_clark;
+  if (name == "none") return Quadrangulation::none;
+  throw UsageError("unknown quadrangulation '" + std::string(name) + "' (expected dual-simplest, catmull-clark or none)");
+}
+
 } // namespace meander

@@ -4,6 +4,7 @@
 #include "io/zip.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/textured_io.h"
 #include "meander/render.h"
 #include "meander/shapes.h"
 #include "meander/subdivide.h"

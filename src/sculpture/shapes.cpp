@@ -3,7 +3,7 @@
 #include "meander/error.h"
 #include "meander/locality.h"
 #include "meander/subdivide.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <algorithm>
 #include <cmath>

@@ -264,4 +264,17 @@ std::string verify_cycle(const QuadMesh& m, const TriangleCycle& cycle) {
   return "";
 }
 
+PolygonMesh cycle_triangles(const QuadMesh& quads, const TriangleCycle& cycle) {
+  PolygonMesh m;
+  m.positions = quads.positions;
+  m.face_vertices.reserve(cycle.order.size() * 3);
+  m.face_start.resize(cycle.order.size() + 1);
+  for (size_t t = 0; t < cycle.order.size(); ++t) {
+    const auto corners = cycle_triangle(quads, cycle.order[t]);
+    m.face_vertices.insert(m.face_vertices.end(), corners.begin(), corners.end());
+    m.face_start[t + 1] = int32_t(3 * (t + 1));
+  }
+  return m;
+}
+
 } // namespace meander

@@ -1,0 +1,4 @@
+#include "fuzz_main.h"
+#include "fuzz_targets.h"
+
+MEANDER_FUZZ_ENTRY(meander::fuzz::wire_target(bytes))
