@@ -21,8 +21,10 @@ deps:
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	fi
 
+# The benchmarks are built by `make bench` only (BENCH=ON), not for the tests.
+BENCH ?= OFF
 build: deps studio
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMEANDER_BUILD_BENCH=ON > /dev/null
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMEANDER_BUILD_BENCH=$(BENCH) > /dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
@@ -101,7 +103,8 @@ browser:
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq chromium \
 	  || echo "make test: chromium could not be installed: the studio's browser test will be skipped (failed under CI)"; }
 
-bench: build
+bench:
+	$(MAKE) build BENCH=ON
 	bench/run.sh
 
 gallery: build

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <set>
 #include <string_view>
 #include <unistd.h>
@@ -282,8 +283,12 @@ std::string textured_obj_target(std::span<const uint8_t> input) {
   } folder;
   const std::string_view all(reinterpret_cast<const char*>(input.data()), input.size());
   const size_t split = std::min(all.find('\0'), all.size());
-  write_bytes(folder.path / "m.mtl", all.substr(std::min(split + 1, all.size())));
-  write_bytes(folder.path / "f.obj", all.substr(0, split));
+  // Plain writes: through atomic files (a temporary file renamed) this target ran 12 times slower.
+  const auto put = [&](const char* name, std::string_view bytes) {
+    std::ofstream(folder.path / name, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size()));
+  };
+  put("m.mtl", all.substr(std::min(split + 1, all.size())));
+  put("f.obj", all.substr(0, split));
   return refusals_pass([&]() -> std::string {
     const TexturedMesh textured = read_textured_mesh(folder.path / "f.obj");
     if (std::string problem = mesh_problem(textured.mesh, false); !problem.empty()) return "mesh: " + problem;
