@@ -216,9 +216,15 @@ int32_t boruvka_round(int32_t n, const Edges& edges, std::vector<int32_t>& label
     for (int32_t x = begin; x < end; ++x)
       if (parent[size_t(x)] == x) label[size_t(x)] = tree++;
   });
+  // A halving step of another thread may have moved a node's parent back below its root
+  // after the node's own last step (a late store of an ancestor read before): parents
+  // only ever point higher on the same path, so the root is found by following them.
   tbb::parallel_for(nodes, [&](const auto& range) {
-    for (int32_t x = range.begin(); x < range.end(); ++x)
-      if (parent[size_t(x)] != x) label[size_t(x)] = label[size_t(parent[size_t(x)])];
+    for (int32_t x = range.begin(); x < range.end(); ++x) {
+      int32_t root = parent[size_t(x)];
+      while (parent[size_t(root)] != root) root = parent[size_t(root)];
+      if (root != x) label[size_t(x)] = label[size_t(root)];
+    }
   });
   return first_tree.back();
 }
