@@ -4,6 +4,7 @@
 #include "meander/duotone.h"
 #include "meander/error.h"
 #include "meander/pipeline.h"
+#include "meander/parameters.h"
 #include "meander/studio.h"
 #include "meander/textured_io.h"
 #include "meander/wire.h"
@@ -313,12 +314,13 @@ std::string make_request_target(std::span<const uint8_t> bytes) {
   } catch (const UsageError&) {
     return {};
   }
-  const StudioParams& p = request.params;
-  const auto within = [](double v, double low, double high) { return std::isfinite(v) && v >= low && v <= high; };
-  if (!within(p.radius, 0, INFINITY) || !within(p.thickness, 0, INFINITY)) return "radius or thickness out of range";
-  if (!within(p.s, 0, 1) || !within(p.t, 0, 1)) return "s or t out of [0, 1]";
-  if (p.sides < 3 || p.sides > 64 || p.levels < 0 || p.levels > 6) return "sides or levels out of range";
-  if (p.job.curve.samples < 1 || p.job.curve.samples > 1000) return "samples out of range";
+  // What the parser accepts, the jobs take.
+  try {
+    check_parameters(request.params.wire);
+    check_parameters(request.params.duotone);
+  } catch (const UsageError& e) {
+    return std::string("accepted a value the job refuses: ") + e.what();
+  }
   return {};
 }
 

@@ -59,28 +59,9 @@ TEST(AtomicFile, TargetIsReplacedAndNothingLeftBeside) {
   }
 }
 
-// A PLY curve's blocks are reserved at its final size before its bytes are written, and
-// never past it (AtomicFile::expect_size), so that closing it cuts nothing back: on ext4
-// with `discard` that cut waited for the journal, behind the discards of the file the
-// previous run had replaced (0.9 s at the end of the 10M curve). Written again with files
-// limited to that size, the run is not ended: reserving in steps (1 MiB, then doubling)
-// would pass the limit unless a step ended exactly there.
-TEST(AtomicFile, CurveFileIsNeverReservedPastItsSize) {
-  const fs::path dir = test::output_dir();
-  const fs::path mesh = dir / "sphere.obj", free = dir / "free.ply", limited = dir / "limited.ply";
-  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "20000", "-o", mesh.string()}).exit_code, 0);
-  ASSERT_EQ(test::run_cli({"curve", mesh.string(), "-o", free.string()}).exit_code, 0);
-  const uint64_t size = fs::file_size(free);
-  ASSERT_GT(size, 3 * mebibyte) << "a curve too small to pass a step";
-  const test::CommandResult r = test::run_cli({"curve", mesh.string(), "-o", limited.string()}, size);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(test::read_file(limited) == test::read_file(free));
-}
-
-// A curve's points and edges are written around the page cache where the file system
-// allows (O_DIRECT, AtomicFile::fill), in page-aligned buffers. The header is 186 bytes
-// (8-digit counts), so every float of the points lies 2 bytes off a multiple of 4, and
-// records are cut at every buffer's end: read back, it is still the curve.
+// A curve's points and edges are made a buffer at a time (Sink::fill). The header is 186
+// bytes (8-digit counts), so every float of the points lies 2 bytes off a multiple of 4,
+// and records are cut at every buffer's end: read back, it is still the curve.
 TEST(AtomicFile, LargeCurveReadsBackExactly) {
   const fs::path target = test::output_dir() / "curve.ply";
   Polylines curve;

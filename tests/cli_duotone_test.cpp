@@ -120,8 +120,8 @@ TEST(CliDuotone, RefusesBadRequestsPreciselyWithoutOutput) {
   }());
   expect_refused({"--colors", "red,#12g456"}, 2, "--colors 'red,#12g456': '#12g456' is not a colour", quads);
   expect_refused({"--colors", "navy,navy"}, 2, "the two colours are the same", quads);
-  expect_refused({"--tiles", "zigzag"}, 2, "unknown tile style 'zigzag' (expected truchet, outline, triangles, stripes or dots)", quads);
-  expect_refused({"--texture-size", "99"}, 2, "texture size 99: expected an even number of pixels in 64..8192", quads);
+  expect_refused({"--tiles", "zigzag"}, 2, "--tiles: unknown value 'zigzag' (expected truchet, outline, triangles, stripes or dots)", quads);
+  expect_refused({"--texture-size", "99"}, 2, "--texture-size 99: expected an even number of pixels in 64..8192", quads);
   expect_refused({"--regions", "only.ply"}, 2, "--regions 'only.ply': expected two files A.ply,B.ply", quads);
   expect_refused({"--quad", "none"}, 1, "would need both colours (an odd cycle of edges runs through it)", quads);
 }

@@ -320,8 +320,8 @@ TEST(CliWireOutput, BadParametersAreRefused) {
   const auto dir = output_dir();
   const std::string mesh = (shared_meshes() / "tetrahedron.obj").string(), out = (dir / "wire.stl").string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-      {{"--radius", "-1"}, "--radius '-1': expected a positive number or auto"},
-      {{"--radius", "wide"}, "--radius 'wide'"},
+      {{"--radius", "-1"}, "--radius: expected a positive number or auto, got -1"},
+      {{"--radius", "wide"}, "--radius: expected a positive number or auto, got wide"},
       {{"--sides", "2"}, "--sides"},
       {{"--method", "variable", "--s", "1.5"}, "--s"},
       {{"--method", "variable", "--t", "-0.5"}, "--t"},

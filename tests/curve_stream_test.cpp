@@ -171,11 +171,9 @@ TEST(CurveStream, UnfinishedWriterLeavesNoFile) {
   }
 }
 
-// A curve file of more than 250 MB is written around the page cache where the file
-// system allows (O_DIRECT, src/io/atomic_file.h), its points a part at a time as the walk
-// shows them, the partial pages between the parts through the page cache; the writer then
-// seeks back to close each of the two curves, which must wait for the direct writes
-// there. Read back, it is still the curve in memory.
+// A curve file of more than 250 MB is written with its points a part at a time as the
+// walk shows them; the writer then seeks back to close each of the two curves. Read
+// back, it is still the curve in memory.
 TEST(CurveStream, LargeFileReadsBackAsTheCurve) {
   const CurveResult made = make_curve(sphere_and_torus(12000, 12000), {.cycle = {.seed = 2}, .sample = false});
   const int64_t triangles = made.cycle.num_triangles();

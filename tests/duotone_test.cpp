@@ -272,7 +272,7 @@ TEST(Duotone, NoneRefusesPrecisely) {
   EXPECT_THAT(test::message_of<TopologyError>([&] { duotone_of(sheet, {.quadrangulation = Quadrangulation::none}); }),
               HasSubstr("face 0 has a boundary edge (0, 1)"));
   EXPECT_THAT(test::message_of<TopologyError>([] { duotone_of(torus(50), {.quadrangulation = Quadrangulation::none}); }),
-              HasSubstr("--quad none needs a mesh of quads only"));
+              HasSubstr("quad none needs a mesh of quads only"));
 }
 
 TEST(Duotone, PictureHasExactlyTwoColourRegionsPerComponent) {
@@ -388,7 +388,7 @@ TEST(Duotone, ColoursAndStylesParseOrAreRefusedPrecisely) {
   EXPECT_EQ(parse_duotone_colors("red,#0A0b0c")[1], (Color8{10, 11, 12}));
   EXPECT_EQ(parse_duotone_colors("yellow,blue"), TileOptions{}.colors);
   EXPECT_THAT(test::message_of<UsageError>([] { parse_duotone_colors("red,#12345"); }),
-              HasSubstr("--colors 'red,#12345': '#12345' is not a colour (expected #rrggbb or one of yellow"));
+              HasSubstr("colors 'red,#12345': '#12345' is not a colour (expected #rrggbb or one of yellow"));
   EXPECT_THAT(test::message_of<UsageError>([] { parse_duotone_colors("mauve,blue"); }), HasSubstr("'mauve' is not a colour"));
   EXPECT_THAT(test::message_of<UsageError>([] { parse_duotone_colors("red"); }), HasSubstr("expected two colours C1,C2"));
   EXPECT_THAT(test::message_of<UsageError>([] { parse_duotone_colors("red,red,blue"); }), HasSubstr("expected two colours"));
@@ -396,7 +396,7 @@ TEST(Duotone, ColoursAndStylesParseOrAreRefusedPrecisely) {
   for (const char* name : {"truchet", "outline", "triangles", "stripes", "dots"}) EXPECT_EQ(to_string(parse_tile_style(name)), name);
   EXPECT_EQ(test::message_of<UsageError>([] { parse_tile_style("zigzag"); }),
             "unknown tile style 'zigzag' (expected truchet, outline, triangles, stripes or dots)");
-  EXPECT_THAT(test::message_of<UsageError>([] { duotone_atlas({.texture_size = 100000}); }), HasSubstr("texture size 100000"));
+  EXPECT_THAT(test::message_of<UsageError>([] { duotone_atlas({.texture_size = 100000}); }), HasSubstr("texture_size 100000"));
   EXPECT_THAT(test::message_of<UsageError>([] { parse_duotone_rule("greedy"); }), HasSubstr("expected tree or flip"));
 }
 

@@ -322,5 +322,26 @@ TEST(IoStl, WeldingIsExact) {
   EXPECT_EQ(read_mesh(test::write_file("ulp.stl", bytes)).num_vertices(), 5);
 }
 
+// The bytes in memory are the file's, for every format (the studio's downloads).
+TEST(IoMemory, FileBytesAreTheFilesBytes) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.5f}, {0.5f, 0.5f, 1}};
+  mesh.face_start = {0, 4, 7};
+  mesh.face_vertices = {0, 1, 2, 3, 0, 3, 4};
+  for (const char* name : {"m.obj", "m.ply", "m.stl", "m.off", "m.glb", "m.3mf"}) {
+    const std::filesystem::path path = test::output_dir() / name;
+    write_mesh(mesh, path);
+    EXPECT_TRUE(mesh_file_bytes(mesh, name) == test::read_file(path)) << name;
+  }
+  Polylines curves{.points = mesh.positions, .start = {0, 3, 5}, .open = {false, true}};
+  for (const char* name : {"c.obj", "c.ply", "c.json", "c.svg"}) {
+    const std::filesystem::path path = test::output_dir() / name;
+    write_polylines(curves, path);
+    EXPECT_TRUE(polylines_file_bytes(curves, name) == test::read_file(path)) << name;
+  }
+  EXPECT_THROW(mesh_file_bytes(mesh, "m.gltf"), UsageError);
+  EXPECT_THROW(polylines_file_bytes(curves, "c.txt"), UsageError);
+}
+
 } // namespace
 } // namespace meander

@@ -119,7 +119,7 @@ TEST(QuadsAsIs, RefusesAFaceThatIsNotAQuad) {
     quads_as_is(m, build_connectivity(m));
     FAIL();
   } catch (const TopologyError& e) {
-    EXPECT_STREQ(e.what(), "face 0 has 3 vertices: --quad none needs a mesh of quads only (use --quad dual-simplest or catmull-clark)");
+    EXPECT_STREQ(e.what(), "face 0 has 3 vertices: quad none needs a mesh of quads only (use quad dual-simplest or catmull-clark)");
   }
 }
 

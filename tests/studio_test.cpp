@@ -32,38 +32,38 @@ TEST(Studio, MakeRequestTakesEveryCliParameter) {
       "t": 0.9, "thickness": 0.02, "levels": 0})");
   EXPECT_EQ(r.session, "ab");
   EXPECT_EQ(r.params.mode, StudioMode::variable_ribbon);
-  EXPECT_EQ(r.params.job.quadrangulation, Quadrangulation::catmull_clark);
-  EXPECT_EQ(r.params.job.cycle.tree, TreeStrategy::dfs);
-  EXPECT_EQ(r.params.job.cycle.seed, 42u);
-  EXPECT_EQ(r.params.job.curve.smoothing, Smoothing::catmull_rom);
-  EXPECT_EQ(r.params.job.curve.samples, 6);
-  EXPECT_EQ(r.params.radius, 0.5);
-  EXPECT_EQ(r.params.sides, 5);
-  EXPECT_EQ(r.params.s, 0.3);
-  EXPECT_EQ(r.params.t, 0.9);
-  EXPECT_EQ(r.params.thickness, 0.02);
-  EXPECT_EQ(r.params.levels, 0);
-  EXPECT_EQ(parse_make_request(R"({"session": "x", "radius": "auto"})").params.radius, 0);
+  EXPECT_EQ(r.params.wire.curve.quadrangulation, Quadrangulation::catmull_clark);
+  EXPECT_EQ(r.params.wire.curve.cycle.tree, TreeStrategy::dfs);
+  EXPECT_EQ(r.params.wire.curve.cycle.seed, 42u);
+  EXPECT_EQ(r.params.wire.curve.curve.smoothing, Smoothing::catmull_rom);
+  EXPECT_EQ(r.params.wire.curve.curve.samples, 6);
+  EXPECT_EQ(r.params.wire.radius, 0.5);
+  EXPECT_EQ(r.params.wire.sides, 5);
+  EXPECT_EQ(r.params.wire.s, 0.3);
+  EXPECT_EQ(r.params.wire.t, 0.9);
+  EXPECT_EQ(r.params.wire.thickness, 0.02);
+  EXPECT_EQ(r.params.wire.levels, 0);
+  EXPECT_FALSE(parse_make_request(R"({"session": "x", "mode": "constant-wire", "radius": "auto"})").params.wire.radius);
   const MakeRequest d = parse_make_request(R"({"session": "x", "mode": "duotone", "rule": "flip", "colors": "red,#00ff00",
       "tiles": "dots", "texture_size": 256, "subdivide": 2})");
   EXPECT_EQ(d.params.mode, StudioMode::duotone);
-  EXPECT_EQ(d.params.rule, DuotoneRule::flip);
-  EXPECT_EQ(d.params.tiles.style, TileStyle::dots);
-  EXPECT_EQ(d.params.tiles.colors[1], (Color8{0, 255, 0}));
-  EXPECT_EQ(d.params.tiles.texture_size, 256);
-  EXPECT_EQ(d.params.subdivide, 2);
+  EXPECT_EQ(d.params.duotone.duotone.rule, DuotoneRule::flip);
+  EXPECT_EQ(d.params.duotone.tiles.style, TileStyle::dots);
+  EXPECT_EQ(d.params.duotone.tiles.colors[1], (Color8{0, 255, 0}));
+  EXPECT_EQ(d.params.duotone.tiles.texture_size, 256);
+  EXPECT_EQ(d.params.duotone.subdivide, 2);
 }
 
 TEST(Studio, MakeRequestRefusalsNameTheKey) {
   EXPECT_EQ(message_of(R"({"session": "x", "s": 1.5})"), "s: expected a number in [0, 1], got 1.5");
   EXPECT_EQ(message_of(R"({"session": "x", "levels": 2.5})"), "levels: expected an integer in [0, 6], got 2.5");
   EXPECT_EQ(message_of(R"({"session": "x", "sides": 2})"), "sides: expected an integer in [3, 64], got 2");
-  EXPECT_EQ(message_of(R"({"session": "x", "radius": -1})"), "radius: expected a positive number or \"auto\", got -1");
-  EXPECT_EQ(message_of(R"({"session": "x", "seed": -3})"), "seed: expected a non-negative integer, got -3");
+  EXPECT_EQ(message_of(R"({"session": "x", "radius": -1})"), "radius: expected a positive number or auto, got -1");
+  EXPECT_EQ(message_of(R"({"session": "x", "seed": -3})"), "seed: expected an integer, got -3");
   EXPECT_EQ(message_of(R"({"session": "x", "colour": "red"})"), "\"colour\": unknown parameter");
   EXPECT_NE(message_of(R"({"session": "x", "tree": "oak"})").find("tree: "), std::string::npos);
   EXPECT_NE(message_of(R"({"session": "x", "mode": "duo"})").find("mode: unknown mode 'duo'"), std::string::npos);
-  EXPECT_NE(message_of(R"({"session": "x", "colors": "red"})").find("colors: "), std::string::npos);
+  EXPECT_NE(message_of(R"({"session": "x", "colors": "red"})").find("colors 'red': expected two colours"), std::string::npos);
   EXPECT_EQ(message_of(R"({"session": "x", "subdivide": 6})"), "subdivide: expected an integer in [0, 5], got 6");
   EXPECT_EQ(message_of(R"({"s": 0.5})"), "session: missing (upload a mesh first: POST /api/mesh)");
   EXPECT_EQ(message_of("{\"session\": "), "request body is not valid JSON");
@@ -109,7 +109,7 @@ TEST(Studio, EveryModeMakesWhatTheCliMakes) {
   const StudioSurface surface = demo_surface();
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {
     SCOPED_TRACE(mode);
-    StudioParams params{.mode = parse_studio_mode(mode), .levels = 0};
+    StudioParams params{.mode = parse_studio_mode(mode), .wire = {.levels = 0}};
     const StudioResult r = make_studio_result(surface, params);
     EXPECT_EQ(r.curve.curves.start.size(), 2u); // one closed curve: the pretzel is one component
     EXPECT_GT(r.curve_length, 0);
@@ -136,7 +136,7 @@ TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto path = test::shared_meshes() / "spot_control_mesh.obj";
   const StudioSurface spot = load_studio_surface(path.filename().string(), test::read_file(path));
-  const StudioParams params{.mode = StudioMode::variable_wire, .levels = 0};
+  const StudioParams params{.mode = StudioMode::variable_wire, .wire = {.levels = 0}};
   const StudioResult crossing = make_studio_result(spot, params);
   ASSERT_TRUE(crossing.report.self_intersecting);
   EXPECT_GT(crossing.surface_crossings, 0);
@@ -151,7 +151,7 @@ TEST(Studio, SaysWhenTheSurfaceItselfCrossesItself) {
 TEST(Studio, VariableModesFlipCapsAndCollapseNeedles) {
   const StudioSurface cap = load_studio_surface("cap.obj", "v 0 0 0\nv 2 0 0\nv 1 0.05 0\nv 1 -1 0\nf 1 2 3\nf 2 1 4\n");
   for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::constant_ribbon}) {
-    const StudioResult r = make_studio_result(cap, {.mode = mode, .levels = 0, .preview = true});
+    const StudioResult r = make_studio_result(cap, {.mode = mode, .wire = {.levels = 0}, .preview = true});
     const bool variable = mode != StudioMode::constant_ribbon;
     EXPECT_EQ(r.curve.cap_flips, variable ? 1 : 0);
     EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["cap_flips"], r.curve.cap_flips);
@@ -163,14 +163,14 @@ TEST(Studio, VariableModesFlipCapsAndCollapseNeedles) {
   write_mesh(grid_mesh, needles_path);
   const StudioSurface needles = load_studio_surface("needles.obj", test::read_file(needles_path));
   for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::constant_wire}) {
-    const StudioResult r = make_studio_result(needles, {.mode = mode, .levels = 0, .preview = true});
+    const StudioResult r = make_studio_result(needles, {.mode = mode, .wire = {.levels = 0}, .preview = true});
     EXPECT_EQ(r.curve.needle_collapses, mode == StudioMode::variable_wire ? 1 : 0);
     EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["needle_collapses"], r.curve.needle_collapses);
   }
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto path = test::shared_meshes() / "genus3hexa1.obj";
   const StudioSurface hexagons = load_studio_surface(path.filename().string(), test::read_file(path));
-  const StudioResult r = make_studio_result(hexagons, {.mode = StudioMode::variable_ribbon, .levels = 0, .preview = true});
+  const StudioResult r = make_studio_result(hexagons, {.mode = StudioMode::variable_ribbon, .wire = {.levels = 0}, .preview = true});
   EXPECT_EQ(r.curve.stars, 82);
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(r))["stars"], 82);
 }
@@ -179,17 +179,17 @@ TEST(Studio, VariableModesFlipCapsAndCollapseNeedles) {
 // options: what is drawn is always the atlas of the options asked for.
 TEST(Studio, DuotoneReusesTheAtlasOnlyForTheSameTiles) {
   const StudioSurface surface = demo_surface();
-  StudioParams params{.mode = StudioMode::duotone, .tiles = {.texture_size = 64}};
+  StudioParams params{.mode = StudioMode::duotone, .duotone = {.tiles = {.texture_size = 64}}};
   const StudioResult first = make_studio_result(surface, params);
   const auto atlas = [](const StudioResult& r) { return r.appearance.materials.at(0).texture.rgba; };
-  params.job.cycle.seed = 7;
+  params.duotone.duotone.seed = 7;
   const StudioResult reseeded = make_studio_result(surface, params, &first);
   EXPECT_EQ(atlas(reseeded), atlas(first));
   EXPECT_EQ(reseeded.mesh.face_vertices, make_studio_result(surface, params).mesh.face_vertices);
   for (const TileOptions& tiles : {TileOptions{.style = TileStyle::dots, .texture_size = 64},
                                    TileOptions{.colors = {Color8{255, 0, 0}, Color8{0, 0, 255}}, .texture_size = 64},
                                    TileOptions{.texture_size = 128}}) {
-    params.tiles = tiles;
+    params.duotone.tiles = tiles;
     const StudioResult changed = make_studio_result(surface, params, &reseeded);
     EXPECT_EQ(atlas(changed), duotone_atlas(tiles).rgba);
     EXPECT_NE(atlas(changed), atlas(first));
@@ -203,8 +203,8 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}) {
     for (const char* quad : {"dual-simplest", "catmull-clark"}) {
       SCOPED_TRACE(std::string(mode) + " " + quad);
-      StudioParams params{.mode = parse_studio_mode(mode), .levels = 0, .tiles = {.texture_size = 256}};
-      params.job.quadrangulation = parse_quadrangulation(quad);
+      StudioParams params{.mode = parse_studio_mode(mode), .wire = {.levels = 0}, .duotone = {.tiles = {.texture_size = 256}}};
+      params.wire.curve.quadrangulation = params.duotone.duotone.quadrangulation = parse_quadrangulation(quad);
       const StudioResult r = make_studio_result(surface, params);
       const int64_t size = studio_result_size(surface, params);
       if (params.mode == StudioMode::curve) EXPECT_EQ(size, int64_t(r.curve.curves.points.size()));
@@ -213,10 +213,10 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
     }
   }
   // Levels, samples and subdivision multiply it as they multiply the work.
-  EXPECT_EQ(studio_result_size(surface, {.mode = StudioMode::variable_wire, .levels = 3}),
-            16 * studio_result_size(surface, {.mode = StudioMode::variable_wire, .levels = 1}));
+  EXPECT_EQ(studio_result_size(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 3}}),
+            16 * studio_result_size(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 1}}));
   StudioParams many{.mode = StudioMode::curve};
-  many.job.curve.samples = 1000;
+  many.wire.curve.curve.samples = 1000;
   EXPECT_EQ(studio_result_size(surface, many), 250 * studio_result_size(surface, {.mode = StudioMode::curve}));
   // The variable modes split polygons of 5 or more sides into stars first.
   MEANDER_REQUIRE_SHARED_MESHES();
@@ -224,8 +224,8 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
   const StudioSurface hexagons = load_studio_surface(path.filename().string(), test::read_file(path));
   for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon})
     for (const char* quad : {"dual-simplest", "catmull-clark"}) {
-      StudioParams params{.mode = mode, .levels = 0};
-      params.job.quadrangulation = parse_quadrangulation(quad);
+      StudioParams params{.mode = mode, .wire = {.levels = 0}};
+      params.wire.curve.quadrangulation = params.duotone.duotone.quadrangulation = parse_quadrangulation(quad);
       EXPECT_EQ(studio_result_size(hexagons, params), make_studio_result(hexagons, params).triangles) << quad;
     }
 }
@@ -235,16 +235,16 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
 TEST(Studio, APreviewOverItsBudgetTakesFewerSamples) {
   StudioSurface surface{.name = "sphere.obj"};
   surface.repaired = repair(make_shape("sphere", 4000), surface.name);
-  StudioParams wide{.mode = StudioMode::constant_wire, .sides = 64};
+  StudioParams wide{.mode = StudioMode::constant_wire, .wire = {.sides = 64}};
   StudioParams one = wide;
-  one.job.curve.samples = 1;
+  one.wire.curve.curve.samples = 1;
   StudioParams two = wide;
-  two.job.curve.samples = 2;
+  two.wire.curve.curve.samples = 2;
   ASSERT_GT(studio_result_size(surface, two), 2'500'000);
   wide.preview = true;
   EXPECT_EQ(studio_result_size(surface, wide), studio_result_size(surface, one));
   const StudioResult quick = make_studio_result(surface, wide);
-  EXPECT_EQ(quick.params.job.curve.samples, 1);
+  EXPECT_EQ(quick.params.wire.curve.curve.samples, 1);
   EXPECT_EQ(quick.triangles, studio_result_size(surface, one));
   // Within the budget a preview keeps its 2 samples.
   StudioParams narrow{.mode = StudioMode::constant_wire, .preview = true};
@@ -253,14 +253,14 @@ TEST(Studio, APreviewOverItsBudgetTakesFewerSamples) {
 
 TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   const StudioSurface surface = demo_surface();
-  StudioParams full{.mode = StudioMode::variable_wire, .levels = 2};
-  full.job.curve.samples = 8;
+  StudioParams full{.mode = StudioMode::variable_wire, .wire = {.levels = 2}};
+  full.wire.curve.curve.samples = 8;
   StudioParams preview = full;
   preview.preview = true;
   const StudioResult quick = make_studio_result(surface, preview);
-  EXPECT_EQ(quick.params.levels, 0);
-  EXPECT_EQ(quick.params.job.curve.samples, 2);
-  const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .levels = 0});
+  EXPECT_EQ(quick.params.wire.levels, 0);
+  EXPECT_EQ(quick.params.wire.curve.curve.samples, 2);
+  const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 0}});
   EXPECT_EQ(quick.triangles, level0.triangles);
   EXPECT_EQ(studio_result_size(surface, preview), quick.triangles);
   const auto stats = nlohmann::json::parse(studio_stats_json(quick));
@@ -275,7 +275,7 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(wire.radius, max_wire_radius(wire.curve.curves, 2));
   EXPECT_GT(wire.radius, checked.radius / 2); // the bound is within about a third of the truth
   EXPECT_LT(wire.radius, checked.radius * 2);
-  EXPECT_EQ(checked.radius, auto_wire_radius(checked.curve.quads, checked.curve.cycle, {.curve = StudioParams{}.job.curve}));
+  EXPECT_EQ(checked.radius, auto_wire_radius(checked.curve.quads, checked.curve.cycle, {.curve = StudioParams{}.wire.curve.curve}));
   EXPECT_EQ(parse_make_request(R"({"session": "a", "preview": true})").params.preview, true);
   EXPECT_EQ(message_of(R"({"session": "a", "preview": 1})"), "preview: expected true or false, got 1");
 }
@@ -287,13 +287,13 @@ TEST(Studio, AConstantPreviewKeepsTheFullResultsRadiusOnTheSameCurve) {
   const StudioSurface surface = demo_surface();
   const StudioResult full = make_studio_result(surface, {.mode = StudioMode::constant_wire});
   ASSERT_GT(full.radius, 0);
-  StudioParams sides{.mode = StudioMode::constant_wire, .sides = 5, .preview = true};
+  StudioParams sides{.mode = StudioMode::constant_wire, .wire = {.sides = 5}, .preview = true};
   const StudioResult same = make_studio_result(surface, sides, &full);
   EXPECT_EQ(same.radius, full.radius);
-  EXPECT_EQ(same.params.sides, 5);
+  EXPECT_EQ(same.params.wire.sides, 5);
   EXPECT_NE(make_studio_result(surface, sides).radius, full.radius);
   StudioParams reseeded = sides;
-  reseeded.job.cycle.seed = 9;
+  reseeded.wire.curve.cycle.seed = 9;
   const StudioResult other = make_studio_result(surface, reseeded, &full);
   EXPECT_EQ(other.radius, max_wire_radius(other.curve.curves, 2));
   // Only a full result lends its radius, and only to the same mode.
@@ -374,47 +374,51 @@ TEST(Studio, ResultFilesHaveFixedNames) {
     EXPECT_THROW(parse_studio_file(bad), UsageError) << bad;
 }
 
+// Made in memory, byte for byte what the CLI's writers put in files.
 TEST(Studio, DownloadsAreTheWritersFiles) {
   const StudioSurface surface = demo_surface();
-  const std::filesystem::path scratch = test::output_dir();
-  const StudioResult wire = make_studio_result(surface, {.mode = StudioMode::variable_wire, .levels = 0});
-  const StudioDownload stl = studio_download(surface, wire, StudioFile::stl, scratch, "a");
+  const std::filesystem::path dir = test::output_dir();
+  const StudioResult wire = make_studio_result(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 0}});
+  const StudioDownload stl = studio_download(surface, wire, StudioFile::stl);
   uint32_t triangles = 0;
   std::memcpy(&triangles, stl.bytes.data() + 80, 4);
   EXPECT_EQ(triangles, wire.report.triangles);
   EXPECT_EQ(stl.bytes.size(), 84 + 50 * size_t(triangles));
   EXPECT_EQ(stl.filename, "pretzel_variable-wire.stl");
-  const StudioDownload zip = studio_download(surface, wire, StudioFile::obj_zip, scratch, "b");
+  for (const auto& [file, name] : {std::pair{StudioFile::stl, "w.stl"}, {StudioFile::threemf, "w.3mf"}, {StudioFile::glb, "w.glb"}}) {
+    write_mesh(wire.mesh, dir / name);
+    EXPECT_TRUE(studio_download(surface, wire, file).bytes == test::read_file(dir / name)) << name;
+  }
+  const StudioDownload zip = studio_download(surface, wire, StudioFile::obj_zip);
   EXPECT_EQ(zip.bytes.substr(0, 4), std::string("PK\3\4", 4));
   EXPECT_NE(zip.bytes.find("pretzel_variable-wire.mtl"), std::string::npos);
   EXPECT_NE(zip.bytes.find("mtllib pretzel_variable-wire.mtl"), std::string::npos); // stored, so readable
   // The render as `meander wire --png` draws it: 1200 x 900, the copper wire covering a good part of it.
-  // Beside the scratch folder, which must be left empty.
-  const std::filesystem::path png = scratch.parent_path() / (scratch.filename().string() + "_render.png");
-  {
-    const std::string bytes = studio_download(surface, wire, StudioFile::png, scratch, "c").bytes;
-    std::ofstream(png, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-  }
-  const Texture picture = read_texture(png);
+  const Texture picture = read_texture(studio_download(surface, wire, StudioFile::png).bytes, "render.png");
   EXPECT_EQ(picture.width, 1200);
   EXPECT_EQ(picture.height, 900);
   size_t copper = 0;
   for (size_t i = 0; i + 3 < picture.rgba.size(); i += 4)
     copper += picture.rgba[i] > picture.rgba[i + 2] + 60 && picture.rgba[i] > picture.rgba[i + 1];
   EXPECT_GT(copper, picture.rgba.size() / 4 / 20);
-  // Nothing is left behind in the scratch folder.
-  EXPECT_TRUE(std::filesystem::is_empty(scratch));
   // A duotone's zip carries its texture, as `meander duotone -o x.obj` writes it.
   StudioParams duotone{.mode = StudioMode::duotone};
-  duotone.tiles.texture_size = 64;
+  duotone.duotone.tiles.texture_size = 64;
   const StudioResult painted = make_studio_result(surface, duotone);
-  const StudioDownload painted_zip = studio_download(surface, painted, StudioFile::obj_zip, scratch, "f");
+  const StudioDownload painted_zip = studio_download(surface, painted, StudioFile::obj_zip);
   EXPECT_NE(painted_zip.bytes.find("pretzel_duotone_texture.png"), std::string::npos);
-  EXPECT_EQ(studio_download(surface, painted, StudioFile::texture, scratch, "g").bytes.substr(1, 3), "PNG");
-  EXPECT_THROW(studio_download(surface, wire, StudioFile::texture, scratch, "h"), UsageError);
+  const TexturedMesh textured{.mesh = painted.mesh, .appearance = painted.appearance};
+  write_textured_mesh(textured, dir / "pretzel_duotone.obj");
+  EXPECT_NE(painted_zip.bytes.find(test::read_file(dir / "pretzel_duotone.obj")), std::string::npos);
+  write_textured_mesh(textured, dir / "d.glb");
+  EXPECT_TRUE(studio_download(surface, painted, StudioFile::glb).bytes == test::read_file(dir / "d.glb"));
+  const std::string texture = studio_download(surface, painted, StudioFile::texture).bytes;
+  EXPECT_TRUE(texture == test::read_file(dir / "pretzel_duotone_texture.png"));
+  EXPECT_THROW(studio_download(surface, wire, StudioFile::texture), UsageError);
   const StudioResult curve = make_studio_result(surface, {});
-  EXPECT_THROW(studio_download(surface, curve, StudioFile::glb, scratch, "d"), UsageError);
-  EXPECT_EQ(studio_download(surface, curve, StudioFile::svg, scratch, "e").bytes.substr(0, 4), "<svg");
+  EXPECT_THROW(studio_download(surface, curve, StudioFile::glb), UsageError);
+  write_polylines(curve.curve.curves, dir / "c.svg");
+  EXPECT_TRUE(studio_download(surface, curve, StudioFile::svg).bytes == test::read_file(dir / "c.svg"));
 }
 
 TEST(Studio, SessionsAreFoundByIdAndTheOldestDropped) {

@@ -27,21 +27,45 @@ void require_output_path(const std::filesystem::path& path, std::initializer_lis
     throw IOError(path.string() + ": cannot write: folder '" + folder.string() + "' does not exist");
 }
 
-void add_curve_flags(CLI::App& app, CurveFlags& flags) {
-  app.add_option("--quad", flags.quad, "quadrangulation")->check(CLI::IsMember({"dual-simplest", "catmull-clark", "none"}))->capture_default_str();
-  app.add_option("--tree", flags.tree, "spanning tree strategy: the style of the meander (shaped: random, preferring "
-                                      "well-shaped triangles)")
-      ->check(CLI::IsMember({"random", "uniform", "bfs", "dfs", "shaped"}))->capture_default_str();
-  app.add_option("--seed", flags.seed, "random seed (same seed, same output)")->capture_default_str();
-  app.add_option("--smooth", flags.smooth, "smoothing of the control polygon")->check(CLI::IsMember({"bspline", "catmull-rom", "none"}))->capture_default_str();
-  app.add_option("--samples", flags.samples, "points per control polygon segment")->check(CLI::Range(1, 1000))->capture_default_str();
-  app.add_option("--max-faces", flags.max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
+std::string option_name(std::string_view parameter) {
+  std::string name = "--" + std::string(parameter);
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
 }
 
-CurveJob curve_job(const CurveFlags& flags) {
-  return {.quadrangulation = parse_quadrangulation(flags.quad),
-          .cycle = {.tree = parse_tree_strategy(flags.tree), .seed = flags.seed},
-          .curve = {.smoothing = parse_smoothing(flags.smooth), .samples = flags.samples}};
+template <class Job> void add_parameters(CLI::App& app, Job& job) {
+  visit_parameters(job, [&app](const Parameter& p, auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    const std::string name = option_name(p.name);
+    std::string help(p.help);
+    if (std::isfinite(p.max)) help += " (" + parameter_text(p.min) + ".." + parameter_text(p.max) + ")";
+    else if (std::isfinite(p.min)) help += " (>= " + parameter_text(p.min) + ")";
+    if constexpr (std::is_same_v<T, bool>) {
+      app.add_flag(name, value, help);
+      return;
+    }
+    CLI::Option* option = app.add_option_function<std::string>(
+        name, [&p, &value](const std::string& text) { set_parameter(p, text, value); }, help);
+    option->default_str(parameter_text(value));
+    std::string type;
+    if constexpr (std::is_enum_v<T>) {
+      for (std::string_view choice : p.choices) type += (type.empty() ? "{" : ",") + std::string(choice);
+      type += "}";
+    } else if constexpr (std::is_arithmetic_v<T>) {
+      type = std::is_integral_v<T> ? "INT" : "FLOAT";
+    } else {
+      type = p.choices.empty() ? "TEXT" : "FLOAT|" + std::string(p.choices[0]); // radius: a number or auto
+    }
+    option->type_name(type);
+  });
+}
+
+template void add_parameters(CLI::App&, CurveJob&);
+template void add_parameters(CLI::App&, WireJob&);
+template void add_parameters(CLI::App&, DuotoneJob&);
+
+void add_max_faces(CLI::App& app, int64_t& max_faces) {
+  app.add_option("--max-faces", max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
 }
 
 bool reorders(const CurveJob& job) { return job.quadrangulation != Quadrangulation::none; }

@@ -3,6 +3,7 @@
 
 #include "meander/check.h"
 #include "meander/error.h"
+#include "meander/parameters.h"
 #include "meander/pipeline.h"
 
 #include <CLI/CLI.hpp>
@@ -21,16 +22,16 @@ namespace meander::cli {
 void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
                          std::string_view option);
 
-// The options every command that builds the curve takes: --quad --tree --seed --smooth
-// --samples --max-faces, as `meander curve` defines them.
-struct CurveFlags {
-  std::string quad = "dual-simplest", tree = "random", smooth = "bspline";
-  uint64_t seed = 1;
-  int samples = 4;
-  int64_t max_faces = 0; // --max-faces: refuse larger inputs (RepairOptions::max_faces)
-};
-void add_curve_flags(CLI::App& app, CurveFlags& flags);
-CurveJob curve_job(const CurveFlags& flags);
+// The option of a parameter (parameters.h): "--texture-size" for texture_size.
+std::string option_name(std::string_view parameter);
+
+// Adds an option for each parameter of a CurveJob, WireJob or DuotoneJob, bound to the
+// job's field: its name as option_name gives it, its help, its default (the job's value
+// now) and its choices. A value is read by set_parameter, whose refusal names the option.
+template <class Job> void add_parameters(CLI::App& app, Job& job);
+
+// --max-faces: refuse larger inputs (RepairOptions::max_faces).
+void add_max_faces(CLI::App& app, int64_t& max_faces);
 // Whether the input may be put in another order before `job` (RepairOptions::reorder):
 // not under --quad none, which refuses a face that is not a quad by its number.
 bool reorders(const CurveJob& job);

@@ -3,7 +3,8 @@
 #include "picture_options.h"
 
 #include "meander/io.h"
-#include "meander/pipeline.h"
+#include "meander/jobs.h"
+#include "meander/parameters.h"
 #include "meander/render.h"
 
 #include <memory>
@@ -14,13 +15,15 @@ namespace {
 
 struct CurveArgs {
   std::string input, output, triangles, png;
-  CurveFlags curve;
+  CurveJob job;
+  int64_t max_faces = 0;
   PictureArgs picture;
   bool strict = false, verbose = false;
 };
 
 void run_curve(const CurveArgs& a) {
-  CurveJob job = curve_job(a.curve);
+  CurveJob job = a.job;
+  check_parameters(job);
   // Only the picture needs the curve's points in memory; otherwise they are sampled as
   // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
   job.sample = !a.png.empty();
@@ -31,7 +34,7 @@ void run_curve(const CurveArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.curve.max_faces, .reorder = reorders(job)});
+  RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces, .reorder = reorders(job)});
   StageTimes times;
   const CurveResult result =
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
@@ -44,14 +47,7 @@ void run_curve(const CurveArgs& a) {
   }
   std::string picture_written;
   if (!a.png.empty()) {
-    Scene scene;
-    // The surface is the occluder, as in the paper's figures: the triangulated quad mesh
-    // the curve was built on, since on non-planar polygons a fan of the input faces
-    // would cut through the curve.
-    scene.meshes.push_back({.mesh = cycle_triangles(result.quads, result.cycle), .color = {0.82f, 0.82f, 0.82f},
-                            .style = occluder_style(a.picture)});
-    scene.curves.push_back({.curves = result.curves});
-    picture_written = write_picture(scene, picture, a.picture, a.png);
+    picture_written = write_picture(curve_scene(result, occluder_style(a.picture)), picture, a.picture, a.png);
     log.lap("render png");
   }
   const int32_t curves = result.cycle.num_cycles();
@@ -70,7 +66,8 @@ Command add_curve_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("curve", "Make the closed curve(s) that cover a mesh's surface (one per connected component)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_option("-o,--output", args->output, "output curve: .obj (l elements), .ply (binary edges), .json, .svg")->required();
-  add_curve_flags(*app, args->curve);
+  add_parameters(*app, args->job);
+  add_max_faces(*app, args->max_faces);
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");
   CLI::Option* png = app->add_option(
       "--png", args->png, "also render the curve to this picture (.png), the surface hiding its back parts");

@@ -2,12 +2,11 @@
 #include "commands.h"
 #include "picture_options.h"
 
-#include "meander/duotone.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/jobs.h"
+#include "meander/parameters.h"
 #include "meander/textured_io.h"
-#include "meander/render.h"
-#include "meander/subdivide.h"
 
 #include <cmath>
 #include <cstdio>
@@ -19,10 +18,7 @@ namespace {
 
 struct DuotoneArgs {
   std::string input, output, png, curve, regions;
-  std::string quad = "catmull-clark", rule = "tree", tree = "random", colors = "yellow,blue", tiles = "truchet";
-  uint64_t seed = 1;
-  int32_t texture_size = 1024;
-  int subdivide = 0;
+  DuotoneJob job;
   int64_t max_faces = 0;
   PictureArgs picture;
   bool strict = false, verbose = false;
@@ -41,9 +37,8 @@ std::array<std::string, 2> region_paths(const std::string& text) {
 constexpr double kBytesPerQuad = 480;
 
 void run_duotone(const DuotoneArgs& a) {
-  const DuotoneOptions options{.quadrangulation = parse_quadrangulation(a.quad), .rule = parse_duotone_rule(a.rule),
-                               .tree = parse_tree_strategy(a.tree), .seed = a.seed};
-  const TileOptions tiles{.style = parse_tile_style(a.tiles), .colors = parse_duotone_colors(a.colors), .texture_size = a.texture_size};
+  const DuotoneJob& job = a.job;
+  check_parameters(job);
   require_output_path(a.output, {".obj", ".glb"}, "-o");
   if (!a.curve.empty()) require_output_path(a.curve, {".obj", ".ply", ".json", ".svg"}, "--curve");
   std::array<std::string, 2> regions;
@@ -57,33 +52,31 @@ void run_duotone(const DuotoneArgs& a) {
   StageLog log(a.verbose);
   const RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces});
   log.restart();
-  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, options); });
+  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, job.duotone); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
   const auto quads_at = [&](int levels) { return double(duotone.quads.num_quads()) * std::pow(4.0, levels); };
   require_memory(
-      a.input, quads_at(a.subdivide), kBytesPerQuad,
+      a.input, quads_at(job.subdivide), kBytesPerQuad,
       [&] {
-        return "the duotone surface at --subdivide " + std::to_string(a.subdivide) + " would have " +
-               std::to_string(int64_t(quads_at(a.subdivide))) + " quads";
+        return "the duotone surface at --subdivide " + std::to_string(job.subdivide) + " would have " +
+               std::to_string(int64_t(quads_at(job.subdivide))) + " quads";
       },
       [&](double memory) -> std::string {
-        for (int levels = a.subdivide - 1; levels >= 0; --levels)
+        for (int levels = job.subdivide - 1; levels >= 0; --levels)
           if (quads_at(levels) * kBytesPerQuad <= memory) return "use --subdivide " + std::to_string(levels) + " or a coarser mesh";
         return "use a coarser mesh";
       });
-  TexturedMesh surface = duotone_surface(duotone, tiles);
-  log.lap("tiles");
-  if (a.subdivide > 0) {
-    surface = subdivide(surface, {.levels = a.subdivide});
-    log.lap("subdivide");
-  }
+  StageTimes times;
+  const TexturedMesh surface = paint_duotone(duotone, job, {}, &times);
+  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.restart();
   // Everything is computed before the first file is written, so that a refusal leaves
   // no output behind.
   Polylines curves;
-  if (!a.curve.empty()) curves = separating_curves(duotone, tiles.style);
+  if (!a.curve.empty()) curves = separating_curves(duotone, job.tiles.style);
   std::array<PolygonMesh, 2> pieces;
-  if (!a.regions.empty()) pieces = duotone_regions(duotone, tiles.style);
+  if (!a.regions.empty()) pieces = duotone_regions(duotone, job.tiles.style);
   log.lap("curve, regions");
 
   write_textured_mesh(surface, a.output);
@@ -92,9 +85,7 @@ void run_duotone(const DuotoneArgs& a) {
   log.lap("write");
   std::string picture_written;
   if (!a.png.empty()) {
-    Scene scene;
-    scene.meshes.push_back({.mesh = surface.mesh, .appearance = surface.appearance});
-    picture_written = write_picture(scene, picture, a.picture, a.png);
+    picture_written = write_picture(duotone_scene(surface), picture, a.picture, a.png);
     log.lap("render png");
   }
   const int32_t components = duotone.cycle.num_cycles();
@@ -103,7 +94,7 @@ void run_duotone(const DuotoneArgs& a) {
   std::fprintf(stderr, "%s: %d quads (%s), %s, %s tiles\n", a.output.c_str(), duotone.quads.num_quads(),
                duotone.quadrangulation == Quadrangulation::catmull_clark ? "catmull-clark"
                : duotone.quadrangulation == Quadrangulation::dual_simplest ? "dual-simplest" : "as is",
-               regions_text.c_str(), std::string(to_string(tiles.style)).c_str());
+               regions_text.c_str(), std::string(to_string(job.tiles.style)).c_str());
   if (!a.png.empty()) log.note("wrote " + picture_written);
 }
 
@@ -114,24 +105,12 @@ Command add_duotone_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand("duotone", "Paint a surface in two colours: two connected regions separated by one curve per component (Truchet tiles)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
   app->add_option("-o,--output", args->output, "textured surface: .obj (with .mtl and a .png texture beside it) or .glb")->required();
-  app->add_option("--quad", args->quad, "2-colourable quads: catmull-clark (dual-simplest on a mesh with boundary), dual-simplest "
-                                        "(larger tiles), none (an all-quad closed input whose vertices are 2-colourable)")
-      ->check(CLI::IsMember({"catmull-clark", "dual-simplest", "none"}))->capture_default_str();
-  app->add_option("--rule", args->rule, "tree: a spanning tree of the yellow diagonals (the reviewer's rule); flip: random "
-                                        "diagonals flipped until one curve (the paper's)")
-      ->check(CLI::IsMember({"tree", "flip"}))->capture_default_str();
-  app->add_option("--tree", args->tree, "which spanning tree: the look")->check(CLI::IsMember({"random", "uniform", "bfs", "dfs"}))->capture_default_str();
-  app->add_option("--seed", args->seed, "random seed (same seed, same output)")->capture_default_str();
-  app->add_option("--colors", args->colors, "the two colours C1,C2: names (yellow, gold, blue, navy, red, ...) or #rrggbb")->capture_default_str();
-  app->add_option("--tiles", args->tiles, "tile style: truchet, outline, triangles, stripes or dots")->capture_default_str();
-  app->add_option("--texture-size", args->texture_size, "texture atlas width in pixels (even, 64..8192)")->capture_default_str();
-  app->add_option("--subdivide", args->subdivide, "Catmull-Clark subdivision levels of the textured surface (OpenSubdiv, "
-                                                  "texture coordinates carried along)")->check(CLI::Range(0, 5))->capture_default_str();
+  add_parameters(*app, args->job);
   app->add_option("--curve", args->curve, "also write the separating curve(s) on the quad surface: .obj, .ply, .json, .svg");
   app->add_option("--regions", args->regions, "also write the two colour regions cut along the curve: A.ply,B.ply (binary)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the textured surface to this picture (.png)");
   add_picture_options(*app, args->picture, "the --png picture", png);
-  app->add_option("--max-faces", args->max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  add_max_faces(*app, args->max_faces);
   app->add_flag("--strict", args->strict, "refuse a mesh that needs repair instead of repairing it");
   app->add_flag("-v,--verbose", args->verbose, "print the time each stage took and what was written");
   return {app, [args] { run_duotone(*args); }};

@@ -1,11 +1,13 @@
 // meander: Hamiltonian cycle art from the command line.
 // Exit codes: 0 success, 1 input refused or processing failed, 2 usage error.
+#include "cli_support.h"
 #include "commands.h"
 
 #include "meander/error.h"
 
 #include <cstdio>
 #include <new>
+#include <string>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -18,6 +20,9 @@ int main(int argc, char** argv) {
                                          add_serve_command(app), add_duotone_command(app)};
   try {
     app.parse(argc, argv);
+    for (const Command& c : commands)
+      if (c.app->parsed()) c.run();
+    return 0;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -25,11 +30,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;
-  }
-  try {
-    for (const Command& c : commands)
-      if (c.app->parsed()) c.run();
-    return 0;
+  } catch (const meander::ParameterError& e) {
+    // The library names the parameter; here it is an option.
+    const std::string message = e.what();
+    std::fprintf(stderr, "meander: %s%s\n", option_name(e.parameter()).c_str(), message.c_str() + e.parameter().size());
+    return 2;
   } catch (const meander::UsageError& e) {
     std::fprintf(stderr, "meander: %s\n", e.what());
     return 2;

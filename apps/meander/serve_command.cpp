@@ -70,7 +70,7 @@ void run_serve(const ServeArgs& a) {
     const std::string command = "xdg-open '" + url + "' > /dev/null 2>&1 &";
     if (std::system(command.c_str()) != 0) std::fprintf(stderr, "meander serve: could not open a browser; visit %s\n", url.c_str());
   }
-  // Ctrl-C and SIGTERM stop the server cleanly, so its scratch folder is removed.
+  // Ctrl-C and SIGTERM stop the server cleanly.
   sigset_t stop_signals;
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);

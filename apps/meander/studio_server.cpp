@@ -333,22 +333,12 @@ struct StudioServer::Impl {
   StudioServerOptions options;
   std::map<std::string, Asset> page;
   StudioSessions sessions;
-  fs::path scratch;
-  std::atomic<uint64_t> downloads{0};
   std::atomic<uint64_t> revisions{0};
   int port = 0; // once bound
   GuardedServer http{options};
 
   explicit Impl(StudioServerOptions o) : options(std::move(o)), page(read_page(options.page)), sessions(options.sessions) {
-    std::string folder = (fs::temp_directory_path() / "meander-studio-XXXXXX").string();
-    if (!mkdtemp(folder.data())) throw IOError(folder + ": cannot make the scratch folder");
-    scratch = folder;
     routes();
-  }
-
-  ~Impl() {
-    std::error_code ignored;
-    fs::remove_all(scratch, ignored);
   }
 
   void add_session(httplib::Response& res, StudioSurface surface) {
@@ -410,6 +400,10 @@ struct StudioServer::Impl {
                  {"max_result", options.max_result},
                  {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}},
                  {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}}});
+    });
+
+    http.Get("/api/parameters", [](const httplib::Request&, httplib::Response& res) {
+      res.set_content(studio_parameters_json(), "application/json");
     });
 
     // The body read part by part, keeping only the field `mesh` (httplib would keep every
@@ -482,8 +476,7 @@ struct StudioServer::Impl {
         // Both branches lvalues: `result ? *result : StudioResult{}` copied the whole result
         // (mesh, curve, quads) on every download, the view's included.
         const StudioResult nothing;
-        StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file, scratch,
-                                                  "download_" + std::to_string(++downloads));
+        StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file);
         res.set_header("Content-Disposition", "attachment; filename=\"" + download.filename + "\"");
         // What set_content does, without its copy of a view of tens of megabytes.
         res.body = std::move(download.bytes);

@@ -55,8 +55,7 @@ std::string studio_request_refusal(const std::string& bound_host, int port, cons
 
 class StudioServer {
 public:
-  // Reads the page and makes a private scratch folder (mode 0700, removed by the
-  // destructor) for the files the writers produce. Throws IOError if it cannot.
+  // Reads the page. Throws IOError if it cannot.
   explicit StudioServer(StudioServerOptions options);
   ~StudioServer();
   StudioServer(const StudioServer&) = delete;

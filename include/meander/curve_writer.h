@@ -15,7 +15,7 @@ namespace meander {
 // curves in memory: each block of points is sampled as the writer reaches it (on all
 // cores for PLY), so only a few blocks exist at once instead of 12 bytes a point (1.44 GB
 // for a 10M-triangle mesh at 4 samples). Returns the number of points written. Throws
-// what cycle_curves and write_polylines throw, a bad --samples before the file is made.
+// what cycle_curves and write_polylines throw, a bad samples before the file is made.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
                            const std::filesystem::path& path);
 
@@ -27,7 +27,7 @@ int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, co
 // (beside the serial walk). finish() writes the points left, turns the last edge of
 // each curve back to its own first point when there are several, and commits. `quads`
 // must stay alive and unchanged until then; destroyed without finish(), the writer
-// leaves no file. The constructor throws a bad --samples and a file that cannot be made;
+// leaves no file. The constructor throws a bad samples and a file that cannot be made;
 // finish() what the thread met, and what write_cycle_curves throws.
 class CycleCurveWriter {
 public:

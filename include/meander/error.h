@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace meander {
 
@@ -46,6 +47,20 @@ public:
 class UsageError : public Error {
 public:
   using Error::Error;
+};
+
+// A parameter's value is refused. The message starts with the parameter's name as the
+// jobs spell it ("samples must be at least 1 (got 0)", parameters.h); the CLI shows the
+// name as its option instead (--samples).
+class ParameterError : public UsageError {
+public:
+  // `rest` follows the name: " must be at least 1 (got 0)", ": expected a string".
+  ParameterError(std::string_view parameter, std::string_view rest)
+      : UsageError(std::string(parameter) + std::string(rest)), parameter_(parameter) {}
+  const std::string& parameter() const { return parameter_; }
+
+private:
+  std::string parameter_;
 };
 
 } // namespace meander

@@ -8,9 +8,11 @@
 // vertex 9001 but only 8000 exist", "mesh.ply: face 17: vertex index -3 out of range
 // (0..7)", "mesh.ply: header: unknown format 'binary_middle_endian'". An unknown
 // extension is a UsageError naming the path.
-// Writers never leave a partial file: they write a temporary file beside the target and
-// rename it into place only when everything was written; on failure a previous file of
-// that name is left as it was. Output is deterministic (the same bytes for the same input).
+// Writers never leave a partial file: they write a temporary file beside the target,
+// flush it to the disk and rename it into place only when everything was written (then
+// flush the folder), so even after a power cut the target is whole; on failure a previous
+// file of that name is left as it was. The *_file_bytes functions give the same bytes in
+// memory instead. Output is deterministic (the same bytes for the same input).
 #pragma once
 
 #include "meander/image.h"
@@ -89,6 +91,11 @@ struct MeshWriteOptions {
 // file is left.
 void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 
+// The bytes write_mesh would write to a file named `name` (format by its extension), in
+// memory, for a caller that sends them on rather than to disk (the studio's downloads).
+// Throws what write_mesh throws but IOError.
+std::string mesh_file_bytes(const PolygonMesh& mesh, const std::filesystem::path& name, const MeshWriteOptions& options = {});
+
 // Writes polylines, format by extension:
 //  .obj  v lines and one `l` element per polyline (a closed one repeats its first index
 //        at the end)
@@ -102,6 +109,9 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
 // Throws UsageError for any other extension.
 void write_polylines(const Polylines& curves, const std::filesystem::path& path);
 
+// The bytes write_polylines would write to a file named `name`, in memory.
+std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name);
+
 // Writes bytes as the file `path`. Atomic: no partial file is left. Throws IOError.
 void write_bytes(const std::filesystem::path& path, std::string_view bytes);
 
@@ -112,5 +122,8 @@ void require_png_path(const std::filesystem::path& path);
 // Writes the image as PNG (RGB, or RGBA if it has alpha). Atomic: no partial file is
 // left. Throws UsageError if the extension is not .png, IOError if it cannot be written.
 void write_png(const Image& image, const std::filesystem::path& path);
+
+// The bytes write_png would write, in memory.
+std::string png_file_bytes(const Image& image);
 
 } // namespace meander

@@ -8,6 +8,7 @@
 #include "meander/check.h"
 #include "meander/curve.h"
 #include "meander/duotone.h"
+#include "meander/jobs.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
 
@@ -31,20 +32,13 @@ enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, va
 // "variable-ribbon" | "duotone"; throws UsageError otherwise.
 StudioMode parse_studio_mode(std::string_view name);
 
-// Every parameter of the CLI's curve and wire commands, with the CLI's defaults and ranges.
+// What to make: the mode and the parameters of every mode's job (parameters.h), as the
+// page keeps them all. Curve mode runs wire.curve (make_curve), the wire modes `wire`
+// (its method and shape are the mode's), duotone `duotone`.
 struct StudioParams {
   StudioMode mode = StudioMode::curve;
-  CurveJob job{.curve = {.samples = 4}};
-  double radius = 0; // constant modes: > 0, or 0 for `--radius auto`
-  int sides = 8;     // constant wire: 3..64
-  double s = 0.6, t = 0.6;
-  double thickness = 0; // variable wire, >= 0 (0: half the local ribbon width)
-  int levels = 2;       // variable modes: 0..6
-  // Duotone (quad, tree and seed above; the page switches quad to catmull-clark, the
-  // duotone command's default, when it enters this mode).
-  DuotoneRule rule = DuotoneRule::tree;
-  TileOptions tiles;
-  int subdivide = 0; // 0..5
+  WireJob wire;
+  DuotoneJob duotone;
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
   // larger than 2.5M elements, studio_result_size), levels and subdivide 0, `radius auto`
@@ -58,15 +52,20 @@ struct MakeRequest {
   StudioParams params;
 };
 
-// Parses the body of POST /api/make: a JSON object with "session" (required) and any
-// of "mode", "quad", "tree", "seed", "smooth", "samples", "radius" (number or "auto"),
-// "sides", "s", "t", "thickness", "levels", "preview" (boolean), and for duotone "rule", "colors" ("C1,C2"
-// as --colors), "tiles", "texture_size", "subdivide"; absent keys keep their defaults. Throws
-// UsageError naming the key and what it expects ("s: expected a number in [0, 1], got
-// 1.5", "colour: unknown parameter") for anything else: malformed JSON, a value of the
-// wrong type or out of the CLI's range, an unknown key. Never throws anything else on
-// any bytes (the fuzz target for the API's parameters).
+// Parses the body of POST /api/make: a JSON object with "session" (required), "mode",
+// "preview" (boolean) and any parameter of any mode's job (parameters.h: numbers as JSON
+// numbers, names as strings, "radius" a number or "auto", "colors" "C1,C2"), of which
+// those of the mode's job are set and the others left alone; absent keys keep their
+// defaults. Throws UsageError naming the key and what it expects ("s: expected a number
+// in [0, 1], got 1.5", "colour: unknown parameter") for anything else: malformed JSON, a
+// value of the wrong type or out of its parameter's range, an unknown key. Never throws
+// anything else on any bytes (the fuzz target for the API's parameters).
 MakeRequest parse_make_request(std::string_view body);
+
+// Every mode's parameters for GET /api/parameters, so that the page's help is the CLI's:
+// {"curve": [P, ...], "wire": [...], "duotone": [...]}, each P {"name", "help",
+// "default", and "min", "max", "choices" where it has them}.
+std::string studio_parameters_json();
 
 // A surface ready for the pipeline: read, repaired, its connectivity kept.
 struct StudioSurface {
@@ -111,11 +110,10 @@ struct StudioResult {
 // refuse a request whose samples, sides, levels or subdivision would exhaust memory.
 int64_t studio_result_size(const StudioSurface& surface, const StudioParams& params);
 
-// Runs the job on a copy of the surface: make_curve, then constant_wire (its automatic
-// radius when radius is 0) or variable_wire, then check_printability without the thickness rays
-// (the live view's stats; none for a preview); or make_duotone, duotone_surface (subdivided if asked) and
-// separating_curves. Throws what those throw; TopologyError when no radius avoids a
-// self-intersection, as `meander wire`.
+// Runs the mode's job on the surface as the CLI does (make_curve; wire_curve_job,
+// make_curve and make_wire, its report without the thickness rays (the live view's stats;
+// none for a preview); make_duotone, paint_duotone and separating_curves). Throws what
+// those throw, TopologyError messages naming the surface.
 // `previous`, the session's last result if any, lends its duotone atlas when the tile
 // options are the same (the atlas depends on them alone), and to a constant preview with
 // `radius auto` the radius it found, when it is a full result on the same curve.
@@ -160,13 +158,10 @@ struct StudioDownload {
   std::string filename; // offered to the browser (Content-Disposition): NAME_MODE[_preview].EXT
 };
 
-// One file of the result. Files made by the library's writers go through `scratch`, a
-// private folder the caller owns, under names of the caller's choosing (`stem`) that no
-// client picks, and are removed once read. The zip holds OBJ + MTL (+ the PNG texture of
+// One file of the result, made in memory. The zip holds OBJ + MTL (+ the PNG texture of
 // a duotone). Throws UsageError for a mesh file in curve mode, texture.png without a
 // duotone.
-StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
-                               const std::filesystem::path& scratch, const std::string& stem);
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file);
 
 // Sessions: each holds a surface and its latest result, under a random 128-bit id
 // (32 hex digits). Safe to call from many threads; work on one session is serialised

@@ -5,7 +5,9 @@
 #include "meander/textured_mesh.h"
 
 #include <filesystem>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace meander {
 
@@ -51,5 +53,15 @@ Texture read_texture(std::string_view bytes, std::string_view name);
 // Atomic as a whole: every file is written before any is renamed into place, and if a
 // rename fails the files already renamed are removed. Other extensions: UsageError.
 void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path);
+
+struct NamedFile {
+  std::string name; // a file name, no folder
+  std::string bytes;
+};
+
+// The files write_textured_mesh would write for `name` (the OBJ first, then its MTL and
+// textures, or the one GLB), in memory, named as they would be: for a caller that sends
+// them on rather than to disk. Throws what write_textured_mesh throws but IOError.
+std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name);
 
 } // namespace meander

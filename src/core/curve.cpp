@@ -61,10 +61,10 @@ Vec3 catmull_rom(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, float u) {
 } // namespace
 
 int points_per_segment(int64_t control_points, const CurveOptions& options) {
-  if (options.samples < 1) throw UsageError("--samples must be at least 1 (got " + std::to_string(options.samples) + ")");
+  if (options.samples < 1) throw ParameterError("samples", " must be at least 1 (got " + std::to_string(options.samples) + ")");
   const int k = options.smoothing == Smoothing::none ? 1 : options.samples;
   if (double(control_points) * k > 2147483647.0)
-    throw UsageError("--samples " + std::to_string(k) + " would make more than 2^31 curve points");
+    throw ParameterError("samples", " " + std::to_string(k) + " would make more than 2^31 curve points");
   return k;
 }
 

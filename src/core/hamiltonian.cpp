@@ -60,7 +60,7 @@ void require_closed_sides(const QuadMesh& m) {
     if (side >= 0)
       throw TopologyError("quad " + std::to_string(side / 4) + " side " + std::to_string(side % 4) +
                           " lies on a boundary: this quad mesh has boundary edges, and Taubin's cycle "
-                          "needs a closed quad mesh (use --quad dual-simplest, which handles boundaries)");
+                          "needs a closed quad mesh (use quad dual-simplest, which handles boundaries)");
 }
 
 // How close the triangle (a, b, c) is to equilateral: 4 sqrt(3) area / (sum of squared

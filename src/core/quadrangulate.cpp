@@ -187,7 +187,7 @@ QuadMesh quads_as_is(const PolygonMesh& mesh, const Connectivity& c) {
   for (int32_t f = 0; f < mesh.num_faces(); ++f)
     if (mesh.face_size(f) != 4)
       throw TopologyError("face " + std::to_string(f) + " has " + std::to_string(mesh.face_size(f)) +
-                          " vertices: --quad none needs a mesh of quads only (use --quad dual-simplest or "
+                          " vertices: quad none needs a mesh of quads only (use quad dual-simplest or "
                           "catmull-clark)");
   return quads_with_adjacency(mesh);
 }

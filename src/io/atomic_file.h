@@ -1,140 +1,46 @@
-// A file that appears whole or not at all. Bytes go through a large buffer into a
+// A file that appears whole or not at all. Bytes go through the sink's buffer into a
 // temporary file made with mkstemp in the target's folder (same file system, so the
-// final rename is atomic); commit() renames it over the target. If commit() is never
-// reached (an exception), the destructor removes the temporary file and a pre-existing
-// target is left untouched.
-//
-// The file's blocks are reserved ahead of the writes (fallocate, in steps that double up
-// to 64 MiB, or at once to the size expect_size gives) and the file cut back to what was
-// written when it closes: with delayed allocation each buffered write reserves its
-// blocks page by page and writeback then allocates them, which made writing a 2.2 GiB
-// curve here take 1.5-4.9 s against 0.4-0.5 s preallocated (docs/benchmarks.md). Where
-// the file system cannot reserve (or is full), the writes go on without.
-//
-// A large file is also written behind: every 16 MiB of consecutive bytes are sent to the
-// disk at once, and once 128 MiB more have followed they are dropped from the page cache,
-// as far as they have reached the disk by then (what has not stays cached, as any
-// write's bytes would). This is what Linux 6.14's RWF_DONTCACHE does, by hand so that any
-// kernel has it. A curve of 2.4 GB otherwise takes 2.4 GB of page cache that the kernel
-// must find free pages for: on this VM, whose host takes back the memory the guest frees,
-// such pages cost 2.5-3.5 s/GiB, and the write took 5.7-10 s against 1.2-1.7 s written
-// behind (docs/benchmarks.md). The page cache of the written bytes is then reused over
-// and over.
-//
-// A large region whose bytes the caller can make in any order of pieces (fill(): a
-// curve's points and edges) skips the page cache altogether: its whole pages are made in
-// place in a few page-aligned buffers and written with O_DIRECT by a thread of the file's
-// own while the caller makes the next ones; only the partial pages at its ends go through
-// the page cache. Writing the 10M-triangle curve's 0.96 GB of edges during the spanning
-// forest made the forest 0.2 s slower through the page cache: the copy into it, finding
-// it free pages and writing them back; direct, its system time went 0.7-0.9 -> 0.3 s
-// (docs/benchmarks.md). The caller waits for a free buffer, so a disk slower than the
-// caller sets the pace, as it would through the page cache; where the file system refuses
-// O_DIRECT everything goes through the page cache.
+// final rename is atomic); commit() flushes it to the disk (fsync), renames it over the
+// target and flushes the folder, so that after a crash or a power cut the target is the
+// new file or the previous one, never a part. If commit() is never reached (an
+// exception), the destructor removes the temporary file and a previous target is left
+// as it was.
 #pragma once
 
-#include "io/binary.h"
+#include "io/sink.h"
 
-#include <cstdint>
-#include <deque>
 #include <filesystem>
-#include <functional>
-#include <memory>
 #include <span>
 #include <string>
-#include <string_view>
-#include <vector>
 
 namespace meander::io {
 
-class AtomicFile {
+class AtomicFile final : public Sink {
 public:
   // Throws IOError("path: cannot create file: <reason>") if the folder refuses it.
   explicit AtomicFile(const std::filesystem::path& target);
-  ~AtomicFile();
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile() override;
 
-  void text(std::string_view s) { bytes(s.data(), s.size()); }
-  void put(char c) {
-    *room(1) = c;
-    ++used_;
-  }
-  // The shortest decimal that reads back as the same float (std::to_chars).
-  void real(float value);
-  // A fixed number of decimals, for coordinates where a pixel fraction is enough (SVG).
-  void fixed(double value, int decimals);
-  void integer(int64_t value);
-  void bytes(const void* data, size_t size);
-  template <class T> void little_endian(T value) {
-    store_little_endian(room(sizeof(T)), value);
-    used_ += sizeof(T);
-  }
-
-  // The file will be `size` bytes long: its blocks are reserved at once, and never past
-  // that, so that closing it cuts nothing back. On this VM's ext4 (mounted with
-  // `discard`) cutting back the last step's unused blocks waited for the journal, behind
-  // the discards of a file just deleted: 0.9 s at the end of a 2.4 GB curve written right
-  // after the previous one (docs/benchmarks.md).
-  void expect_size(uint64_t size);
-
-  // Writes `size` bytes from the current position: make(offset, n, dst) puts the n bytes
-  // that start `offset` bytes into them at dst, asked for pieces in order, of any size and
-  // at any alignment. Large regions are written direct, as the header says.
-  using Fill = std::function<void(uint64_t offset, size_t size, char* dst)>;
-  void fill(uint64_t size, const Fill& make);
-
-  // The offset of the next byte, and a move to another (past the end leaves a hole that
-  // a later seek back fills): for formats whose sections are written out of order.
-  uint64_t position();
-  void seek(uint64_t offset);
-
-  // Writes out the buffer, closes the file and renames it over the target.
+  // Writes out the buffer, flushes the file to the disk, renames it over the target and
+  // flushes the folder.
   void commit();
 
   // Commits several files that belong together (an OBJ, its MTL and its textures): all
-  // are written out and closed before the first is renamed, so a full disk leaves none;
+  // are written out and flushed before the first is renamed, so a full disk leaves none;
   // if a rename still fails, the targets already renamed are removed again.
   static void commit_all(std::span<AtomicFile* const> files);
 
 private:
-  // At least n (<= the buffer's size) free bytes at the end of the buffer.
-  char* room(size_t n) {
-    if (buffer_.size() - used_ < n) flush();
-    return buffer_.data() + used_;
-  }
-  void flush();
-  // Writes out the buffer and closes the file (once).
+  void write_at(const char* data, size_t size, uint64_t offset) override;
+  // Writes out the buffer, flushes the file to the disk and closes it (once).
   void close();
-  void write_all(const char* data, size_t size);
-  // Bytes through the page cache at `at`, once no direct write still to come covers them.
-  void write_cached(const char* data, size_t size, uint64_t at);
-  // Reserves the file's blocks up to at least `end` while the file system can.
-  void reserve(uint64_t end);
-  // Sends bytes [begin, end), just written, to the disk and drops earlier ones from the
-  // page cache, as the header says.
-  void write_behind(uint64_t begin, uint64_t end);
+  void rename();
   [[noreturn]] void fail(std::string_view what, int error) const;
 
   std::filesystem::path target_;
   std::string temp_;
   int fd_ = -1;
   bool committed_ = false;
-  std::vector<char> buffer_;
-  size_t used_ = 0;
-  uint64_t offset_ = 0;   // where the next write() goes
-  uint64_t written_ = 0;  // the end of the furthest byte written: the file's size
-  uint64_t reserved_ = 0; // the file's size as fallocate left it
-  uint64_t expected_ = UINT64_MAX; // what expect_size said: reserve no further
-  bool reserving_ = true;
-  // Consecutive bytes written but not yet sent to the disk, and the ranges sent whose
-  // pages are still cached.
-  uint64_t unsent_begin_ = 0, unsent_end_ = 0;
-  std::deque<std::pair<uint64_t, uint64_t>> sent_;
-  bool writing_behind_ = true;
-  struct Direct;
-  std::unique_ptr<Direct> direct_; // the O_DIRECT writer, from the first large fill()
-  bool direct_tried_ = false;
 };
 
 } // namespace meander::io

@@ -3,7 +3,7 @@
 // streams tens of millions of triangles per second (issue 4: >= 20 M/s).
 #pragma once
 
-#include "io/atomic_file.h"
+#include "io/sink.h"
 
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
@@ -19,7 +19,7 @@ namespace meander::io {
 // block, so resizing to the same size costs nothing). Blocks are formatted in parallel
 // and passed to out.bytes() in order, with a few blocks in flight per core, so memory
 // stays bounded whatever the count. Exceptions from `format` or `out` propagate.
-template <class Format> void write_blocks(AtomicFile& out, int64_t count, int64_t block, Format&& format) {
+template <class Format> void write_blocks(Sink& out, int64_t count, int64_t block, Format&& format) {
   if (count <= 0) return;
   const size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   // In-order output retires blocks in order, so the blocks in flight are always fewer

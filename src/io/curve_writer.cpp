@@ -1,5 +1,6 @@
 #include "meander/curve_writer.h"
 
+#include "io/atomic_file.h"
 #include "io/formats.h"
 #include "io/polyline_stream.h"
 #include "meander/error.h"

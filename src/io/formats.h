@@ -3,10 +3,11 @@
 // in memory; `name` stands for the file in messages. See meander/io.h for the contract.
 #pragma once
 
-#include "io/atomic_file.h"
+#include "io/sink.h"
 #include "meander/io.h"
 #include "meander/textured_io.h"
 
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,20 +34,22 @@ Polylines chain_edges(std::span<const Vec3> positions, std::span<const int32_t> 
 // to (MTL, textures, glTF buffers and images) are found or written beside.
 TexturedMesh read_textured_obj(std::string_view bytes, const std::filesystem::path& path);
 TexturedMesh read_gltf(std::string_view bytes, const std::filesystem::path& path);
-void write_textured_obj(const TexturedMesh& mesh, const std::filesystem::path& path);
-void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
-void write_textured_glb(const TexturedMesh& mesh, AtomicFile& out);
+// The OBJ, then its MTL and textures, each into the sink open(its path) gives.
+void write_textured_obj(const TexturedMesh& mesh, const std::filesystem::path& path,
+                        const std::function<Sink&(const std::filesystem::path&)>& open);
+void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
+void write_textured_glb(const TexturedMesh& mesh, Sink& out);
 
-void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
-void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
-void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out);
-void write_off(const PolygonMesh& mesh, AtomicFile& out);
+void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
+void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
+void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
+void write_off(const PolygonMesh& mesh, Sink& out);
 // `name` stands for the file in lib3mf's error messages. Coordinates are rounded to 6
 // decimals (lib3mf's format: a micrometre, the unit being the millimetre).
-void write_3mf(const PolygonMesh& mesh, std::string_view name, AtomicFile& out);
+void write_3mf(const PolygonMesh& mesh, std::string_view name, Sink& out);
 
 // "x y z\n": a point as OBJ, OFF and ascii PLY write it.
-inline void write_point_line(AtomicFile& out, Vec3 p) {
+inline void write_point_line(Sink& out, Vec3 p) {
   out.real(p.x);
   out.put(' ');
   out.real(p.y);
@@ -56,7 +59,7 @@ inline void write_point_line(AtomicFile& out, Vec3 p) {
 }
 
 // Points as little-endian float x, y, z (binary PLY).
-inline void write_binary_points(AtomicFile& out, std::span<const Vec3> points) {
+inline void write_binary_points(Sink& out, std::span<const Vec3> points) {
   static_assert(sizeof(Vec3) == 3 * sizeof(float));
   if constexpr (host_is_little_endian) {
     out.bytes(points.data(), points.size_bytes());
@@ -70,7 +73,7 @@ inline void write_binary_points(AtomicFile& out, std::span<const Vec3> points) {
 }
 
 // "n i0 ... i(n-1)\n": a face as OFF and ascii PLY write it.
-inline void write_counted_indices(AtomicFile& out, std::span<const int32_t> face) {
+inline void write_counted_indices(Sink& out, std::span<const int32_t> face) {
   out.integer(int64_t(face.size()));
   for (int32_t v : face) {
     out.put(' ');

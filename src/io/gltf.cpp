@@ -390,7 +390,7 @@ public:
 
   nlohmann::json& json() { return json_; }
 
-  void write(AtomicFile& out) {
+  void write(Sink& out) {
     if (bin_size_ > 0) json_["buffers"] = {{{"byteLength", bin_size_}}};
     std::string text = json_.dump();
     text.resize(padded(text.size()), ' ');
@@ -542,7 +542,7 @@ TexturedMesh read_gltf(std::string_view bytes, const fs::path& path) {
   return GltfReader(model, name, trimmed(warnings)).read();
 }
 
-void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
+void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out) {
   require_writable(mesh);
   std::vector<uint32_t> indices;
   std::vector<Vec3> normals;
@@ -560,7 +560,7 @@ void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicF
   glb.write(out);
 }
 
-void write_textured_glb(const TexturedMesh& textured, AtomicFile& out) {
+void write_textured_glb(const TexturedMesh& textured, Sink& out) {
   const PolygonMesh& mesh = textured.mesh;
   const Appearance& a = textured.appearance;
   if (a.materials.empty()) return write_glb(mesh, {}, out);

@@ -1,3 +1,4 @@
+#include "io/atomic_file.h"
 #include "io/formats.h"
 #include "io/image_codec.h"
 #include "io/mapped_file.h"
@@ -5,6 +6,11 @@
 #include "meander/error.h"
 
 #include <cctype>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace meander {
 
@@ -67,15 +73,49 @@ Texture read_texture(const std::filesystem::path& path) {
 
 Texture read_texture(std::string_view bytes, std::string_view name) { return io::decode_image(bytes, name); }
 
-void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path) {
-  const std::string extension = io::lowercase_extension(path);
-  if (extension == ".obj") return io::write_textured_obj(mesh, path);
-  if (extension != ".glb")
+namespace {
+
+// A textured mesh that is not an OBJ is a GLB.
+void require_glb(const std::filesystem::path& path) {
+  if (const std::string extension = io::lowercase_extension(path); extension != ".glb")
     throw UsageError(path.string() + ": unknown textured mesh format '" + extension + "' (expected .obj or .glb)");
+}
+
+} // namespace
+
+void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path) {
+  if (io::lowercase_extension(path) == ".obj") {
+    std::vector<std::unique_ptr<io::AtomicFile>> files;
+    io::write_textured_obj(mesh, path, [&files](const std::filesystem::path& file) -> io::Sink& {
+      return *files.emplace_back(std::make_unique<io::AtomicFile>(file));
+    });
+    std::vector<io::AtomicFile*> all;
+    for (const auto& file : files) all.push_back(file.get());
+    io::AtomicFile::commit_all(all);
+    return;
+  }
+  require_glb(path);
   check_appearance(mesh.mesh, mesh.appearance, path.string());
   io::AtomicFile out(path);
   io::write_textured_glb(mesh, out);
   out.commit();
+}
+
+std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name) {
+  std::vector<std::pair<std::filesystem::path, std::unique_ptr<io::MemorySink>>> sinks;
+  const auto open = [&sinks](const std::filesystem::path& file) -> io::Sink& {
+    return *sinks.emplace_back(file, std::make_unique<io::MemorySink>()).second;
+  };
+  if (io::lowercase_extension(name) == ".obj") {
+    io::write_textured_obj(mesh, name, open);
+  } else {
+    require_glb(name);
+    check_appearance(mesh.mesh, mesh.appearance, name.string());
+    io::write_textured_glb(mesh, open(name));
+  }
+  std::vector<NamedFile> files;
+  for (auto& [file, sink] : sinks) files.push_back({file.filename().string(), sink->take()});
+  return files;
 }
 
 Polylines read_polylines(const std::filesystem::path& path) {
@@ -88,7 +128,11 @@ Polylines read_polylines(const std::filesystem::path& path) {
                              : io::read_ply_polylines(file.bytes(), path.string());
 }
 
-void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options) {
+namespace {
+
+// write_mesh's format, checks and bytes, into any sink.
+void write_mesh_to(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options,
+                   const std::function<io::Sink&()>& open) {
   const MeshFormat format = mesh_format_from_path(path);
   if (format == MeshFormat::gltf && io::lowercase_extension(path) != ".glb")
     throw UsageError(path.string() + ": writing .gltf is not supported (write .glb: one binary file)");
@@ -97,7 +141,7 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
     if (groups[k] < 0 || groups[k] > mesh.num_faces() || (k > 0 && groups[k] < groups[k - 1]))
       throw UsageError(path.string() + ": group_start must be non-decreasing face numbers in 0.." +
                        std::to_string(mesh.num_faces()));
-  io::AtomicFile out(path);
+  io::Sink& out = open();
   switch (format) {
   case MeshFormat::obj: io::write_obj(mesh, options, out); break;
   case MeshFormat::ply: io::write_ply(mesh, options, out); break;
@@ -106,7 +150,20 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
   case MeshFormat::gltf: io::write_glb(mesh, options, out); break;
   case MeshFormat::threemf: io::write_3mf(mesh, path.string(), out); break;
   }
-  out.commit();
+}
+
+} // namespace
+
+void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options) {
+  std::optional<io::AtomicFile> out;
+  write_mesh_to(mesh, path, options, [&]() -> io::Sink& { return out.emplace(path); });
+  out->commit();
+}
+
+std::string mesh_file_bytes(const PolygonMesh& mesh, const std::filesystem::path& name, const MeshWriteOptions& options) {
+  io::MemorySink out;
+  write_mesh_to(mesh, name, options, [&]() -> io::Sink& { return out; });
+  return out.take();
 }
 
 void write_bytes(const std::filesystem::path& path, std::string_view bytes) {

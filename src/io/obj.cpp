@@ -132,7 +132,7 @@ Polylines read_obj_polylines(std::string_view bytes, std::string_view name) {
   return curves;
 }
 
-void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
+void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out) {
   for (const Vec3& p : mesh.positions) {
     out.text("v ");
     write_point_line(out, p);

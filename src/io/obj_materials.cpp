@@ -179,7 +179,7 @@ std::vector<std::string> writable_names(const std::vector<Material>& materials) 
   return names;
 }
 
-void write_color(AtomicFile& out, const LinearRgb& c) {
+void write_color(Sink& out, const LinearRgb& c) {
   for (float v : c) {
     out.put(' ');
     out.real(v);
@@ -295,7 +295,7 @@ TexturedMesh read_textured_obj(std::string_view bytes, const fs::path& path) {
   return result;
 }
 
-void write_textured_obj(const TexturedMesh& textured, const fs::path& path) {
+void write_textured_obj(const TexturedMesh& textured, const fs::path& path, const std::function<Sink&(const fs::path&)>& open) {
   const PolygonMesh& mesh = textured.mesh;
   const Appearance& a = textured.appearance;
   check_appearance(mesh, a, path.string());
@@ -309,12 +309,11 @@ void write_textured_obj(const TexturedMesh& textured, const fs::path& path) {
     if (!a.materials[k].texture.empty())
       texture_names[k] = stem + (textured_count == 1 ? "_texture.png" : "_texture_" + std::to_string(k) + ".png");
 
-  std::vector<std::unique_ptr<AtomicFile>> files;
-  AtomicFile& obj = *files.emplace_back(std::make_unique<AtomicFile>(path));
+  Sink& obj = open(path);
   if (!a.materials.empty()) {
     fs::path mtl_path = path;
     mtl_path.replace_extension(".mtl");
-    AtomicFile& mtl = *files.emplace_back(std::make_unique<AtomicFile>(mtl_path));
+    Sink& mtl = open(mtl_path);
     for (size_t k = 0; k < a.materials.size(); ++k) {
       mtl.text(k == 0 ? "newmtl " : "\nnewmtl ");
       mtl.text(names[k]);
@@ -326,7 +325,7 @@ void write_textured_obj(const TexturedMesh& textured, const fs::path& path) {
       mtl.put('\n');
       const Texture& t = a.materials[k].texture;
       const fs::path png_path = path.parent_path() / texture_names[k];
-      AtomicFile& png = *files.emplace_back(std::make_unique<AtomicFile>(png_path));
+      Sink& png = open(png_path);
       const std::string bytes = encode_png(t.rgba.data(), t.width, t.height, 4, png_path.string());
       png.bytes(bytes.data(), bytes.size());
     }
@@ -372,9 +371,6 @@ void write_textured_obj(const TexturedMesh& textured, const fs::path& path) {
     }
     obj.put('\n');
   }
-  std::vector<AtomicFile*> all;
-  for (const auto& file : files) all.push_back(file.get());
-  AtomicFile::commit_all(all);
 }
 
 } // namespace meander::io

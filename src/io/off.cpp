@@ -142,7 +142,7 @@ PolygonMesh read_off(std::string_view bytes, std::string_view name) {
   return chunked_or_serially(bytes, name, read_in_chunks, read_serially);
 }
 
-void write_off(const PolygonMesh& mesh, AtomicFile& out) {
+void write_off(const PolygonMesh& mesh, Sink& out) {
   out.text("OFF\n");
   out.integer(mesh.num_vertices());
   out.put(' ');

@@ -628,7 +628,7 @@ Polylines read_ply_polylines(std::string_view bytes, std::string_view name) {
   return chain_edges(vertices.positions, edges, name);
 }
 
-void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
+void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out) {
   int32_t largest_face = 0;
   for (int32_t f = 0; f < mesh.num_faces(); ++f) largest_face = std::max(largest_face, mesh.face_size(f));
   // A uchar length, as every reader expects, unless a face is too large for it.

@@ -30,10 +30,12 @@ void require_png_path(const std::filesystem::path& path) {
     throw UsageError(path.string() + ": unknown image format '" + extension + "' (expected .png)");
 }
 
-void write_png(const Image& image, const std::filesystem::path& path) {
-  require_png_path(path);
+namespace {
+
+// The PNG's bytes; `name` stands for the file in messages.
+std::string png_bytes(const Image& image, const std::string& name) {
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * image.height * 4)
-    throw UsageError(path.string() + ": image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+    throw UsageError(name + ": image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                      " pixels has " + std::to_string(image.rgba.size()) + " bytes");
   std::vector<unsigned char> rgb;
   const unsigned char* pixels = image.rgba.data();
@@ -42,8 +44,16 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     for (size_t i = 0; i < image.rgba.size(); i += 4) rgb.insert(rgb.end(), &image.rgba[i], &image.rgba[i] + 3);
     pixels = rgb.data();
   }
-  const std::string png = io::encode_png(pixels, image.width, image.height, image.has_alpha ? 4 : 3, path.string());
-  write_bytes(path, png);
+  return io::encode_png(pixels, image.width, image.height, image.has_alpha ? 4 : 3, name);
 }
+
+} // namespace
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  require_png_path(path);
+  write_bytes(path, png_bytes(image, path.string()));
+}
+
+std::string png_file_bytes(const Image& image) { return png_bytes(image, "PNG image"); }
 
 } // namespace meander

@@ -3,7 +3,7 @@
 // 4 samples) are written without ever existing whole: write_cycle_curves in curve.h.
 #pragma once
 
-#include "io/atomic_file.h"
+#include "io/sink.h"
 #include "meander/mesh.h"
 
 #include <cstdint>
@@ -37,9 +37,9 @@ void write_polylines(const PolylineStream& curves, const std::filesystem::path& 
 // leaving room for the points and returning where they go; write_ply_points fills it,
 // all of it or the points [begin, end) (a writer that gets its points a part at a time).
 // write_ply_edges writes the edges again, for polylines of the same number of points.
-uint64_t write_ply_layout(const PolylineStream& curves, AtomicFile& out);
-void write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t points_at);
-void write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at);
-void write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at, int64_t begin, int64_t end);
+uint64_t write_ply_layout(const PolylineStream& curves, Sink& out);
+void write_ply_edges(const PolylineStream& curves, Sink& out, uint64_t points_at);
+void write_ply_points(const PolylineStream& curves, Sink& out, uint64_t points_at);
+void write_ply_points(const PolylineStream& curves, Sink& out, uint64_t points_at, int64_t begin, int64_t end);
 
 } // namespace meander::io

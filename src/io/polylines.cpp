@@ -1,3 +1,4 @@
+#include "io/atomic_file.h"
 #include "io/formats.h"
 #include "io/polyline_stream.h"
 #include "io/reader_support.h"
@@ -27,7 +28,7 @@ template <class F> void for_each_block(const io::PolylineStream& curves, int64_t
   }
 }
 
-void write_obj_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
+void write_obj_polylines(const io::PolylineStream& curves, io::Sink& out) {
   for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
     for (const Vec3& p : points) {
       out.text("v ");
@@ -52,11 +53,11 @@ void write_obj_polylines(const io::PolylineStream& curves, io::AtomicFile& out) 
   }
 }
 
-void write_ply_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
+void write_ply_polylines(const io::PolylineStream& curves, io::Sink& out) {
   io::write_ply_points(curves, out, io::write_ply_layout(curves, out));
 }
 
-void write_json_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
+void write_json_polylines(const io::PolylineStream& curves, io::Sink& out) {
   out.text("{\"polylines\": [");
   for (int32_t k = 0; k < curves.size(); ++k) {
     out.text(k == 0 ? "\n  " : ",\n  ");
@@ -82,7 +83,7 @@ void write_json_polylines(const io::PolylineStream& curves, io::AtomicFile& out)
 // Looking down the -z axis: x to the right, y up (SVG's y grows downwards), the
 // drawing scaled to fit a page of 1000 units at the most on its longer side. The page
 // needs the bounding box first, so the points are asked for twice.
-void write_svg_polylines(const io::PolylineStream& curves, io::AtomicFile& out) {
+void write_svg_polylines(const io::PolylineStream& curves, io::Sink& out) {
   constexpr double page = 1000, margin = 20;
   Box3 box;
   for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
@@ -139,7 +140,7 @@ std::vector<int64_t> ply_edge_start(const io::PolylineStream& curves) {
 
 } // namespace
 
-uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
+uint64_t io::write_ply_layout(const PolylineStream& curves, Sink& out) {
   const std::vector<int64_t> edge_start = ply_edge_start(curves);
   out.text("ply\nformat binary_little_endian 1.0\nelement vertex ");
   out.integer(curves.start.back());
@@ -147,7 +148,6 @@ uint64_t io::write_ply_layout(const PolylineStream& curves, AtomicFile& out) {
   out.integer(edge_start.back());
   out.text("\nproperty int vertex1\nproperty int vertex2\nend_header\n");
   const uint64_t points_at = out.position();
-  out.expect_size(points_at + 12 * uint64_t(curves.start.back()) + 8 * uint64_t(edge_start.back()));
   write_ply_edges(curves, out, points_at);
   return points_at;
 }
@@ -181,7 +181,7 @@ template <class Make> void fill_records(uint64_t offset, size_t size, char* dst,
 
 } // namespace
 
-void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
+void io::write_ply_edges(const PolylineStream& curves, Sink& out, uint64_t points_at) {
   const std::vector<int64_t> edge_start = ply_edge_start(curves);
   out.seek(points_at + 12 * uint64_t(curves.start.back()));
   // Edges [begin, begin + count) at `at`.
@@ -211,11 +211,11 @@ void io::write_ply_edges(const PolylineStream& curves, AtomicFile& out, uint64_t
   });
 }
 
-void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at) {
+void io::write_ply_points(const PolylineStream& curves, Sink& out, uint64_t points_at) {
   write_ply_points(curves, out, points_at, 0, curves.start.back());
 }
 
-void io::write_ply_points(const PolylineStream& curves, AtomicFile& out, uint64_t points_at, int64_t begin, int64_t end) {
+void io::write_ply_points(const PolylineStream& curves, Sink& out, uint64_t points_at, int64_t begin, int64_t end) {
   out.seek(points_at + 12 * uint64_t(begin));
   // Points [first, first + count) of the range at `at`. A point's three floats are its
   // record: on a little-endian host sampled straight into place where `at` is aligned for
@@ -301,27 +301,41 @@ Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32
   return out;
 }
 
-void io::write_polylines(const io::PolylineStream& curves, const std::filesystem::path& path) {
+namespace {
+
+// The writer of a curve file's format, by its extension.
+using PolylineWriter = void (*)(const io::PolylineStream&, io::Sink&);
+PolylineWriter polyline_writer(const std::filesystem::path& path) {
   const std::string extension = io::lowercase_extension(path);
-  void (*write)(const io::PolylineStream&, io::AtomicFile&) = extension == ".obj"    ? write_obj_polylines
-                                                          : extension == ".ply"  ? write_ply_polylines
-                                                          : extension == ".json" ? write_json_polylines
-                                                          : extension == ".svg"  ? write_svg_polylines
-                                                                                 : nullptr;
-  if (!write)
-    throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply, .json or .svg)");
+  if (extension == ".obj") return write_obj_polylines;
+  if (extension == ".ply") return write_ply_polylines;
+  if (extension == ".json") return write_json_polylines;
+  if (extension == ".svg") return write_svg_polylines;
+  throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply, .json or .svg)");
+}
+
+io::PolylineStream stream_of(const Polylines& curves) {
+  return {.start = curves.start, .open = curves.open, .points = [&](int64_t begin, int64_t end, Vec3* out) {
+            std::copy(curves.points.begin() + begin, curves.points.begin() + end, out);
+          }};
+}
+
+} // namespace
+
+void io::write_polylines(const io::PolylineStream& curves, const std::filesystem::path& path) {
+  const PolylineWriter write = polyline_writer(path);
   io::AtomicFile out(path);
   write(curves, out);
   out.commit();
 }
 
-void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
-  io::write_polylines(io::PolylineStream{.start = curves.start,
-                                 .open = curves.open,
-                                 .points = [&](int64_t begin, int64_t end, Vec3* out) {
-                                   std::copy(curves.points.begin() + begin, curves.points.begin() + end, out);
-                                 }},
-                  path);
+void write_polylines(const Polylines& curves, const std::filesystem::path& path) { io::write_polylines(stream_of(curves), path); }
+
+std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name) {
+  const PolylineWriter write = polyline_writer(name);
+  io::MemorySink out;
+  write(stream_of(curves), out);
+  return out.take();
 }
 
 } // namespace meander

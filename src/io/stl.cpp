@@ -126,7 +126,7 @@ PolygonMesh read_stl(std::string_view bytes, std::string_view name) {
   return mesh;
 }
 
-void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, AtomicFile& out) {
+void write_stl(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out) {
   if (options.ascii) {
     out.text("solid meander\n");
     for_each_triangle(mesh, [&](Vec3 a, Vec3 b, Vec3 c) {

@@ -41,7 +41,7 @@ void check(LIB3MFRESULT result, NMR::PLib3MFBase* about, std::string_view name, 
 }
 
 // The ZIP that lib3mf writes goes back to patch headers, so it is assembled in memory
-// (compressed, it is a fraction of the mesh) and then written through the AtomicFile.
+// (compressed, it is a fraction of the mesh) and then written to the sink.
 struct SeekableBuffer {
   std::vector<char> bytes;
   size_t position = 0;
@@ -83,7 +83,7 @@ std::string content_uuid(const PolygonMesh& mesh, uint64_t salt) {
 
 } // namespace
 
-void write_3mf(const PolygonMesh& mesh, std::string_view name, AtomicFile& out) {
+void write_3mf(const PolygonMesh& mesh, std::string_view name, Sink& out) {
   std::vector<NMR::MODELMESHVERTEX> vertices(mesh.positions.size());
   for (size_t v = 0; v < vertices.size(); ++v)
     vertices[v] = {{mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z}};

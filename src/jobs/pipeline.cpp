@@ -72,8 +72,8 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   if (job.quadrangulation != Quadrangulation::dual_simplest) {
     if (const int32_t open = count_open_sides(result.quads); open > 0)
       throw TopologyError("the mesh has boundary (" + std::to_string(open) +
-                          " open quad sides): --quad catmull-clark and --quad none need a closed mesh, because "
-                          "Taubin's cycle is only defined there; the default --quad dual-simplest handles "
+                          " open quad sides): quad catmull-clark and quad none need a closed mesh, because "
+                          "Taubin's cycle is only defined there; the default quad dual-simplest handles "
                           "boundaries");
   }
   watch.lap("quadrangulate");

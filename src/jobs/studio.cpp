@@ -4,13 +4,9 @@
 #include "io/zip.h"
 #include "meander/error.h"
 #include "meander/io.h"
-#include "meander/textured_io.h"
-#include "meander/render.h"
+#include "meander/parameters.h"
 #include "meander/shapes.h"
-#include "meander/subdivide.h"
-#include "meander/wire.h"
-
-#include "io/image_codec.h"
+#include "meander/textured_io.h"
 
 #include <nlohmann/json.hpp>
 
@@ -19,10 +15,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <optional>
 #include <random>
-#include <sstream>
 
 namespace meander {
 
@@ -37,23 +31,6 @@ constexpr size_t max_request_bytes = 64 * 1024;
 std::string describe(const json& value) {
   std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
   return text.size() > 40 ? text.substr(0, 40) + "..." : text;
-}
-
-double number_in(const json& value, const char* key, double lo, double hi) {
-  if (!value.is_number() || !std::isfinite(value.get<double>()) || value.get<double>() < lo || value.get<double>() > hi) {
-    std::ostringstream range;
-    range << (std::isinf(hi) ? "a number >= " : "a number in [") << lo;
-    if (!std::isinf(hi)) range << ", " << hi << "]";
-    throw UsageError(std::string(key) + ": expected " + range.str() + ", got " + describe(value));
-  }
-  return value.get<double>();
-}
-
-int integer_in(const json& value, const char* key, int lo, int hi) {
-  if (!value.is_number_integer() || value.get<int64_t>() < lo || value.get<int64_t>() > hi)
-    throw UsageError(std::string(key) + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                     "], got " + describe(value));
-  return int(value.get<int64_t>());
 }
 
 std::string text(const json& value, const char* key) {
@@ -116,15 +93,6 @@ std::string mode_name(StudioMode mode) {
   return "curve";
 }
 
-std::string read_and_remove(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError(path.string() + ": cannot open the file just written");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
-  fs::remove(path);
-  return bytes;
-}
-
 double total_length(const Polylines& curves) {
   double length = 0;
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
@@ -136,8 +104,6 @@ double total_length(const Polylines& curves) {
   return length;
 }
 
-bool is_wire(StudioMode mode) { return mode == StudioMode::constant_wire || mode == StudioMode::variable_wire; }
-
 } // namespace
 
 StudioMode parse_studio_mode(std::string_view name) {
@@ -148,6 +114,46 @@ StudioMode parse_studio_mode(std::string_view name) {
                    "' (expected curve, constant-wire, constant-ribbon, variable-wire, variable-ribbon or duotone)");
 }
 
+namespace {
+
+// The parameter's text from a JSON value: a name as it is, anything else as JSON (so that
+// "4" in quotes is not taken for a number).
+template <class T> std::string json_text(const json& value) {
+  if constexpr (!std::is_arithmetic_v<T>)
+    if (value.is_string()) return value.get<std::string>();
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// Sets the parameter `key` of the mode's job from `value`; false if no mode's job has it.
+// The page sends every mode's parameters: those of other modes are checked, not set, and
+// refused only when no job takes the value (a duotone takes no "shaped" tree, a curve does).
+bool set_studio_parameter(StudioParams& p, const std::string& key, const json& value) {
+  bool known = false, taken = false;
+  std::optional<ParameterError> refusal;
+  const auto set = [&](auto& job, bool applies) {
+    visit_parameters(job, [&](const Parameter& parameter, auto& field) {
+      // The mode sets the wire's method and shape.
+      if (parameter.name != key || &parameter == &parameters::method || &parameter == &parameters::shape) return;
+      known = true;
+      auto scratch = field;
+      try {
+        set_parameter(parameter, json_text<std::decay_t<decltype(field)>>(value), applies ? field : scratch);
+        taken = true;
+      } catch (const ParameterError& e) {
+        if (applies) throw;
+        if (!refusal) refusal = e;
+      }
+    });
+  };
+  set(p.wire.curve, p.mode == StudioMode::curve);
+  set(p.wire, p.mode != StudioMode::curve && p.mode != StudioMode::duotone);
+  set(p.duotone, p.mode == StudioMode::duotone);
+  if (!taken && refusal) throw *refusal;
+  return known;
+}
+
+} // namespace
+
 MakeRequest parse_make_request(std::string_view body) {
   if (body.size() > max_request_bytes)
     throw UsageError("request body of " + std::to_string(body.size()) + " bytes: a make request is at most " +
@@ -157,61 +163,41 @@ MakeRequest parse_make_request(std::string_view body) {
   if (!document.is_object()) throw UsageError("request body: expected a JSON object, got " + describe(document));
   MakeRequest request;
   StudioParams& p = request.params;
+  // The mode first: it says which job the other keys set.
+  if (const auto mode = document.find("mode"); mode != document.end())
+    p.mode = named("mode", [&] { return parse_studio_mode(text(*mode, "mode")); });
   bool has_session = false;
   for (const auto& [key, value] : document.items()) {
     if (key == "session") {
       request.session = text(value, "session");
       has_session = true;
-    } else if (key == "mode") {
-      p.mode = named("mode", [&] { return parse_studio_mode(text(value, "mode")); });
-    } else if (key == "quad") {
-      p.job.quadrangulation = named("quad", [&] { return parse_quadrangulation(text(value, "quad")); });
-    } else if (key == "tree") {
-      p.job.cycle.tree = named("tree", [&] { return parse_tree_strategy(text(value, "tree")); });
-    } else if (key == "smooth") {
-      p.job.curve.smoothing = named("smooth", [&] { return parse_smoothing(text(value, "smooth")); });
-    } else if (key == "seed") {
-      if (!value.is_number_unsigned())
-        throw UsageError("seed: expected a non-negative integer, got " + describe(value));
-      p.job.cycle.seed = value.get<uint64_t>();
-    } else if (key == "samples") {
-      p.job.curve.samples = integer_in(value, "samples", 1, 1000);
-    } else if (key == "radius") {
-      if (value.is_string() && value.get<std::string>() == "auto")
-        p.radius = 0;
-      else if (value.is_number() && value.get<double>() > 0 && std::isfinite(value.get<double>()))
-        p.radius = value.get<double>();
-      else
-        throw UsageError("radius: expected a positive number or \"auto\", got " + describe(value));
-    } else if (key == "sides") {
-      p.sides = integer_in(value, "sides", 3, 64);
-    } else if (key == "s") {
-      p.s = number_in(value, "s", 0, 1);
-    } else if (key == "t") {
-      p.t = number_in(value, "t", 0, 1);
-    } else if (key == "thickness") {
-      p.thickness = number_in(value, "thickness", 0, INFINITY);
-    } else if (key == "levels") {
-      p.levels = integer_in(value, "levels", 0, 6);
-    } else if (key == "rule") {
-      p.rule = named("rule", [&] { return parse_duotone_rule(text(value, "rule")); });
-    } else if (key == "colors") {
-      p.tiles.colors = named("colors", [&] { return parse_duotone_colors(text(value, "colors")); });
-    } else if (key == "tiles") {
-      p.tiles.style = named("tiles", [&] { return parse_tile_style(text(value, "tiles")); });
-    } else if (key == "texture_size") {
-      p.tiles.texture_size = integer_in(value, "texture_size", 64, 8192);
-    } else if (key == "subdivide") {
-      p.subdivide = integer_in(value, "subdivide", 0, 5);
     } else if (key == "preview") {
       if (!value.is_boolean()) throw UsageError("preview: expected true or false, got " + describe(value));
       p.preview = value.get<bool>();
-    } else {
+    } else if (key != "mode" && !set_studio_parameter(p, key, value)) {
       throw UsageError(describe(json(key)) + ": unknown parameter");
     }
   }
   if (!has_session) throw UsageError("session: missing (upload a mesh first: POST /api/mesh)");
   return request;
+}
+
+std::string studio_parameters_json() {
+  const auto described = [](const auto& job) {
+    json list = json::array();
+    visit_parameters(job, [&](const Parameter& p, const auto& value) {
+      if (&p == &parameters::method || &p == &parameters::shape) return;
+      json entry = {{"name", p.name}, {"help", p.help}, {"default", parameter_text(value)}};
+      if (std::isfinite(p.min)) entry["min"] = p.min;
+      if (std::isfinite(p.max)) entry["max"] = p.max;
+      if (!p.choices.empty()) entry["choices"] = std::vector<std::string>(p.choices.begin(), p.choices.end());
+      list.push_back(std::move(entry));
+    });
+    return list;
+  };
+  const StudioParams defaults;
+  return json{{"curve", described(defaults.wire.curve)}, {"wire", described(defaults.wire)}, {"duotone", described(defaults.duotone)}}
+      .dump();
 }
 
 StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces) {
@@ -250,32 +236,23 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
     }
     return corners;
   };
-  int64_t cycle = 2 * quads(params.job.quadrangulation); // triangles the cycle visits
-  if (params.mode == StudioMode::variable_wire || params.mode == StudioMode::variable_ribbon) {
+  if (params.mode == StudioMode::duotone) {
+    const TileOptions& tiles = params.duotone.tiles;
+    const int64_t texture = int64_t(tiles.texture_size) * tiles.texture_size / 2; // the atlas
+    return 4 * quads(params.duotone.duotone.quadrangulation) * (int64_t(1) << (2 * params.duotone.subdivide)) + texture;
+  }
+  const WireJob& wire = params.wire;
+  int64_t cycle = 2 * quads(wire.curve.quadrangulation); // triangles the cycle visits
+  if (params.mode == StudioMode::curve) return cycle * wire.curve.curve.samples;
+  if (wire_curve_job(wire).slab_mesh) {
     // The slab mesh splits a polygon of n >= 5 sides into a star: n more edges (dual of
     // Simplest's quads), 2n more corners (Catmull-Clark's).
     const int star_sides = SlabMeshOptions{}.star_sides;
-    const int64_t per_side = params.job.quadrangulation == Quadrangulation::catmull_clark ? 4 : 2;
+    const int64_t per_side = wire.curve.quadrangulation == Quadrangulation::catmull_clark ? 4 : 2;
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       if (mesh.face_size(f) >= star_sides) cycle += per_side * mesh.face_size(f);
   }
-  switch (params.mode) {
-  case StudioMode::duotone: {
-    const int64_t texture = int64_t(params.tiles.texture_size) * params.tiles.texture_size / 2; // the atlas
-    return 4 * quads(params.job.quadrangulation) * (int64_t(1) << (2 * params.subdivide)) + texture;
-  }
-  case StudioMode::curve: return cycle * params.job.curve.samples;
-  case StudioMode::constant_wire:
-  case StudioMode::constant_ribbon:
-    return constant_wire_triangles(cycle, {.shape = params.mode == StudioMode::constant_wire ? WireShape::wire : WireShape::ribbon,
-                                           .sides = params.sides,
-                                           .curve = params.job.curve});
-  case StudioMode::variable_wire:
-  case StudioMode::variable_ribbon:
-    return variable_wire_triangles(cycle, {.shape = params.mode == StudioMode::variable_wire ? WireShape::wire : WireShape::ribbon,
-                                           .levels = params.levels});
-  }
-  return 0;
+  return wire_triangles(cycle, wire);
 }
 
 // A preview holds at most about this many elements when fewer curve samples can make it
@@ -283,13 +260,19 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
 // wire preview of 2.4M triangles, docs/benchmarks.md).
 constexpr int64_t preview_budget = 2'500'000;
 
-// What a preview actually makes (StudioParams::preview).
+// What is made: the wire's method and shape the mode's, and a preview's reductions
+// (StudioParams::preview).
 StudioParams effective(const StudioSurface& surface, StudioParams params) {
+  const StudioMode mode = params.mode;
+  params.wire.method = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon ? WireMethod::variable : WireMethod::constant;
+  params.wire.shape = mode == StudioMode::constant_ribbon || mode == StudioMode::variable_ribbon ? WireShape::ribbon : WireShape::wire;
   if (!params.preview) return params;
-  params.job.curve.samples = std::min(params.job.curve.samples, 2);
-  params.levels = 0;
-  params.subdivide = 0;
-  while (params.job.curve.samples > 1 && result_size(surface, params) > preview_budget) --params.job.curve.samples;
+  int& samples = params.wire.curve.curve.samples;
+  samples = std::min(samples, 2);
+  params.wire.levels = 0;
+  params.wire.report = false;
+  params.duotone.subdivide = 0;
+  while (samples > 1 && result_size(surface, params) > preview_budget) --samples;
   return params;
 }
 
@@ -304,16 +287,22 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   const StudioParams params = effective(surface, requested);
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
+  const RepairResult& input = surface.repaired;
+  // The library's refusals do not know the upload's name; the user should still read it.
+  const auto about_surface = [&](auto&& work) {
+    try {
+      return work();
+    } catch (const TopologyError& e) {
+      throw TopologyError(surface.name + ": " + e.what());
+    }
+  };
   if (mode == StudioMode::duotone) {
-    Duotone duotone = make_duotone(surface.repaired.mesh, surface.repaired.connectivity,
-                                   {.quadrangulation = params.job.quadrangulation, .rule = params.rule,
-                                    .tree = params.job.cycle.tree, .seed = params.job.cycle.seed});
+    const DuotoneJob& job = params.duotone;
+    Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job.duotone); });
     const bool same_atlas = previous && previous->params.mode == StudioMode::duotone &&
-                            previous->params.tiles == params.tiles && !previous->appearance.materials.empty();
-    TexturedMesh painted = same_atlas ? duotone_surface(duotone, params.tiles, previous->appearance.materials[0].texture)
-                                      : duotone_surface(duotone, params.tiles);
-    if (params.subdivide > 0) painted = subdivide(painted, {.levels = params.subdivide});
-    result.curve.curves = separating_curves(duotone, params.tiles.style);
+                            previous->params.duotone.tiles == job.tiles && !previous->appearance.materials.empty();
+    TexturedMesh painted = paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{});
+    result.curve.curves = separating_curves(duotone, job.tiles.style);
     result.curve_length = total_length(result.curve.curves);
     result.curve.quads = std::move(duotone.quads);
     result.curve.cycle = std::move(duotone.cycle);
@@ -323,56 +312,44 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
-  const bool variable = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon;
-  CurveJob curve_job = params.job;
-  if (variable) curve_job.slab_mesh = SlabMeshOptions{}; // as `meander wire --method variable`
-  result.curve = make_curve(surface.repaired.mesh, surface.repaired.connectivity, curve_job);
+  WireJob job = params.wire;
+  job.measure_thickness = false; // the live view's stats: rays cost more than the wire
+  result.curve = about_surface([&] {
+    return make_curve(input.mesh, input.connectivity, mode == StudioMode::curve ? job.curve : wire_curve_job(job));
+  });
   result.curve_length = total_length(result.curve.curves);
-  const WireShape shape = is_wire(mode) ? WireShape::wire : WireShape::ribbon;
-  bool known_clear = false; // variable_wire searched its result already
-  if (mode == StudioMode::constant_wire || mode == StudioMode::constant_ribbon) {
-    std::optional<double> radius; // none: auto, checked by constant_wire
-    if (params.radius > 0) {
-      radius = params.radius;
-    } else if (params.preview) {
-      // The check that grows the analytic bound costs more than the wire, so a preview
-      // does without it: it takes the radius of the full result before it when that was
-      // made on the same curve (another slider is moving), so that the preview is as
-      // thick as the result that follows; else the bound on its own, coarser curve.
-      const CurveJob& job = requested.job;
-      const bool same_curve = previous && !previous->params.preview && previous->params.mode == mode &&
-                              previous->params.radius == 0 && previous->radius > 0 &&
-                              previous->params.job.quadrangulation == job.quadrangulation &&
-                              previous->params.job.cycle.tree == job.cycle.tree && previous->params.job.cycle.seed == job.cycle.seed &&
-                              previous->params.job.curve == job.curve;
-      radius = same_curve ? previous->radius
-                          : max_wire_radius(result.curve.curves, params.job.curve.smoothing == Smoothing::none ? 1 : params.job.curve.samples);
-    }
-    ConstantWire made;
-    if (!radius || *radius > 0)
-      made = constant_wire(result.curve.quads, result.curve.cycle,
-                           {.shape = shape, .radius = radius, .sides = params.sides, .curve = params.job.curve});
-    if (!(made.radius > 0))
-      throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
-    result.radius = made.radius;
-    result.mesh = std::move(made.mesh);
-  } else if (variable) {
-    VariableWire made = variable_wire(result.curve.quads, result.curve.cycle,
-                                      {.shape = shape, .s = params.s, .t = params.t, .thickness = params.thickness,
-                                       .levels = params.levels});
-    result.mesh = std::move(made.mesh);
-    known_clear = made.clear;
-  }
   if (mode == StudioMode::curve) {
     result.triangles = int64_t(result.curve.cycle.order.size());
-  } else if (params.preview) {
-    for (int32_t f = 0; f < result.mesh.num_faces(); ++f) result.triangles += std::max(0, result.mesh.face_size(f) - 2);
-  } else {
-    result.report = check_printability(result.mesh, {.known_clear = known_clear, .thickness = false});
-    result.triangles = result.report.triangles;
-    if (result.report.self_intersecting)
-      result.surface_crossings = int32_t(crossing_cycle_triangles(result.curve.quads, result.curve.cycle).size());
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
   }
+  if (job.method == WireMethod::constant && !job.radius && params.preview) {
+    // The check that grows the analytic bound costs more than the wire, so a preview
+    // does without it: it takes the radius of the full result before it when that was
+    // made on the same curve (another slider is moving), so that the preview is as
+    // thick as the result that follows; else the bound on its own, coarser curve.
+    const CurveJob& asked = requested.wire.curve;
+    const StudioParams* before = previous ? &previous->params : nullptr;
+    const bool same_curve = before && !before->preview && before->mode == mode && !before->wire.radius && previous->radius > 0 &&
+                            before->wire.curve.quadrangulation == asked.quadrangulation &&
+                            before->wire.curve.cycle.tree == asked.cycle.tree && before->wire.curve.cycle.seed == asked.cycle.seed &&
+                            before->wire.curve.curve == asked.curve;
+    const double radius = same_curve ? previous->radius
+                                     : max_wire_radius(result.curve.curves,
+                                                       job.curve.curve.smoothing == Smoothing::none ? 1 : job.curve.curve.samples);
+    if (!(radius > 0))
+      throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
+    job.radius = radius;
+  }
+  WireResult made = about_surface([&] { return make_wire(result.curve, job); });
+  result.mesh = std::move(made.mesh);
+  result.radius = made.radius;
+  result.report = made.report;
+  result.surface_crossings = int32_t(made.surface_crossings.size());
+  if (params.preview)
+    for (int32_t f = 0; f < result.mesh.num_faces(); ++f) result.triangles += std::max(0, result.mesh.face_size(f) - 2);
+  else
+    result.triangles = result.report.triangles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -390,7 +367,7 @@ std::string studio_stats_json(const StudioResult& result) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();
     // What the atlas depends on: the page fetches texture.png again only when it changes.
-    const TileOptions& tiles = result.params.tiles;
+    const TileOptions& tiles = result.params.duotone.tiles;
     std::string texture(to_string(tiles.style));
     for (const Color8& c : tiles.colors) {
       char hex[9];
@@ -509,20 +486,17 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   return out;
 }
 
-StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
-                               const fs::path& scratch, const std::string& stem) {
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file) {
   // A preview's files say so in their names, so that a script's saved files tell it too.
   const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode) +
                            (result.params.preview ? "_preview" : "");
   const bool curve_mode = result.params.mode == StudioMode::curve;
   const bool textured = !result.appearance.materials.empty();
-  auto written_mesh = [&](const char* extension, const char* type) {
+  auto mesh_file = [&](const char* extension, const char* type) {
     if (curve_mode)
       throw UsageError(std::string("curve mode makes no mesh to save as ") + extension +
                        ": choose a wire or ribbon mode (the curve downloads as curve.svg or result.zip)");
-    const fs::path path = scratch / (stem + extension);
-    write_mesh(result.mesh, path);
-    return StudioDownload{read_and_remove(path), type, base + extension};
+    return StudioDownload{mesh_file_bytes(result.mesh, base + extension), type, base + extension};
   };
   switch (file) {
   case StudioFile::surface:
@@ -534,59 +508,37 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     if (!textured || result.appearance.materials[0].texture.empty())
       throw UsageError("texture.png: only a duotone result has a texture");
     const Texture& t = result.appearance.materials[0].texture;
-    return {io::encode_png(t.rgba.data(), t.width, t.height, 4, "texture.png"), "image/png", base + "_texture.png"};
+    return {png_file_bytes({.width = t.width, .height = t.height, .has_alpha = true, .rgba = t.rgba}), "image/png",
+            base + "_texture.png"};
   }
-  case StudioFile::stl: return written_mesh(".stl", "model/stl");
-  case StudioFile::threemf: return written_mesh(".3mf", "model/3mf");
+  case StudioFile::stl: return mesh_file(".stl", "model/stl");
+  case StudioFile::threemf: return mesh_file(".3mf", "model/3mf");
   case StudioFile::glb: {
-    if (!textured) return written_mesh(".glb", "model/gltf-binary");
-    const fs::path path = scratch / (stem + ".glb");
-    write_textured_mesh({.mesh = result.mesh, .appearance = result.appearance}, path);
-    return {read_and_remove(path), "model/gltf-binary", base + ".glb"};
+    if (!textured) return mesh_file(".glb", "model/gltf-binary");
+    const std::vector<NamedFile> glb = textured_mesh_files({.mesh = result.mesh, .appearance = result.appearance}, base + ".glb");
+    return {glb.front().bytes, "model/gltf-binary", base + ".glb"};
   }
   case StudioFile::obj_zip: {
-    // The writers name the MTL and textures after the OBJ, so each zip gets a folder.
-    const fs::path folder = scratch / stem;
-    fs::create_directory(folder);
-    std::vector<io::ZipEntry> entries;
-    try {
-      if (curve_mode) {
-        write_polylines(result.curve.curves, folder / (base + ".obj"));
-      } else {
-        Appearance appearance = textured ? result.appearance
-                                         : Appearance{.materials = {{.name = "meander", .base_color = {0.72f, 0.45f, 0.2f}}}};
-        write_textured_mesh({.mesh = result.mesh, .appearance = std::move(appearance)}, folder / (base + ".obj"));
-      }
-      std::vector<fs::path> paths(fs::directory_iterator(folder), fs::directory_iterator{});
-      std::sort(paths.begin(), paths.end());
-      for (const fs::path& path : paths) entries.push_back({path.filename().string(), read_and_remove(path)});
-    } catch (...) {
-      fs::remove_all(folder);
-      throw;
+    std::vector<NamedFile> files;
+    if (curve_mode) {
+      files.push_back({base + ".obj", polylines_file_bytes(result.curve.curves, base + ".obj")});
+    } else {
+      Appearance appearance = textured ? result.appearance
+                                       : Appearance{.materials = {{.name = "meander", .base_color = {0.72f, 0.45f, 0.2f}}}};
+      files = textured_mesh_files({.mesh = result.mesh, .appearance = std::move(appearance)}, base + ".obj");
     }
-    fs::remove_all(folder);
+    std::sort(files.begin(), files.end(), [](const NamedFile& a, const NamedFile& b) { return a.name < b.name; });
+    std::vector<io::ZipEntry> entries;
+    for (NamedFile& f : files) entries.push_back({std::move(f.name), std::move(f.bytes)});
     return {io::zip_stored(entries), "application/zip", base + ".zip"};
   }
-  case StudioFile::svg: {
-    const fs::path path = scratch / (stem + ".svg");
-    write_polylines(result.curve.curves, path);
-    return {read_and_remove(path), "image/svg+xml", base + ".svg"};
-  }
+  case StudioFile::svg: return {polylines_file_bytes(result.curve.curves, base + ".svg"), "image/svg+xml", base + ".svg"};
   case StudioFile::png: {
-    // As `meander curve --png` and `meander wire --png`: the surface hides the back of
-    // the curve and of a wire; a ribbon lies in it and is drawn alone.
-    Scene scene;
-    const StudioMode mode = result.params.mode;
-    if (textured) scene.meshes.push_back({.mesh = result.mesh, .appearance = result.appearance});
-    else if (!curve_mode) scene.meshes.push_back({.mesh = result.mesh, .color = {0.72f, 0.45f, 0.2f}});
-    else scene.curves.push_back({.curves = result.curve.curves});
-    if (curve_mode || is_wire(mode))
-      scene.meshes.push_back({.mesh = cycle_triangles(result.curve.quads, result.curve.cycle),
-                              .color = {0.82f, 0.82f, 0.82f},
-                              .style = curve_mode ? MeshStyle::hidden : MeshStyle::faint});
-    const fs::path path = scratch / (stem + ".png");
-    write_png(render(scene, {.width = 1200, .height = 900, .samples = 4}), path);
-    return {read_and_remove(path), "image/png", base + ".png"};
+    // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
+    const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
+                        : curve_mode ? curve_scene(result.curve)
+                                     : wire_scene(result.mesh, result.curve, result.params.wire.shape, MeshStyle::faint);
+    return {png_file_bytes(render(scene, {.width = 1200, .height = 900, .samples = 4})), "image/png", base + ".png"};
   }
   }
   throw UsageError("unknown result file");

@@ -70,7 +70,7 @@ Color8 parse_color(std::string_view text, std::string_view all) {
   }
   std::string names;
   for (const NamedColor& c : kColorNames) names += (names.empty() ? "" : ", ") + std::string(c.name);
-  throw UsageError("--colors '" + std::string(all) + "': '" + std::string(text) + "' is not a colour (expected #rrggbb or one of " +
+  throw ParameterError("colors", " '" + std::string(all) + "': '" + std::string(text) + "' is not a colour (expected #rrggbb or one of " +
                    names + ")");
 }
 
@@ -95,7 +95,7 @@ QuadMesh duotone_quads(const PolygonMesh& mesh, const Connectivity& c, Quadrangu
                             std::to_string(quads.quads[size_t(q)][size_t(k)]) + ", " +
                             std::to_string(quads.quads[size_t(q)][size_t((k + 1) & 3)]) +
                             "): a boundary of quads alternates colours, so no duotone of it has two connected "
-                            "regions; --quad none needs a closed quad mesh (use --quad dual-simplest)");
+                            "regions; quad none needs a closed quad mesh (use quad dual-simplest)");
   return quads;
 }
 
@@ -126,8 +126,8 @@ std::vector<uint8_t> two_coloring(const QuadMesh& m) {
         if (have == unset) have = want;
         if (have != want)
           throw TopologyError("face " + std::to_string(q) + ": vertex " + std::to_string(c[size_t(k)]) +
-                              " would need both colours (an odd cycle of edges runs through it): --quad none needs "
-                              "a quad mesh whose vertices are 2-colourable, as Catmull-Clark makes them (use --quad "
+                              " would need both colours (an odd cycle of edges runs through it): quad none needs "
+                              "a quad mesh whose vertices are 2-colourable, as Catmull-Clark makes them (use quad "
                               "catmull-clark or dual-simplest)");
       }
       for (int32_t n : m.neighbors[size_t(q)])
@@ -208,10 +208,10 @@ std::string_view to_string(TileStyle style) {
 std::array<Color8, 2> parse_duotone_colors(std::string_view text) {
   const size_t comma = text.find(',');
   if (comma == std::string_view::npos || text.find(',', comma + 1) != std::string_view::npos)
-    throw UsageError("--colors '" + std::string(text) + "': expected two colours C1,C2 (names or #rrggbb)");
+    throw ParameterError("colors", " '" + std::string(text) + "': expected two colours C1,C2 (names or #rrggbb)");
   const std::array<Color8, 2> colors{parse_color(text.substr(0, comma), text), parse_color(text.substr(comma + 1), text)};
   if (colors[0] == colors[1])
-    throw UsageError("--colors '" + std::string(text) + "': the two colours are the same; a duotone needs two");
+    throw ParameterError("colors", " '" + std::string(text) + "': the two colours are the same; a duotone needs two");
   return colors;
 }
 
@@ -268,7 +268,7 @@ struct AtlasLayout {
 };
 AtlasLayout atlas_layout(int32_t size) {
   if (size < 64 || size > 8192 || size % 2 != 0)
-    throw UsageError("texture size " + std::to_string(size) + ": expected an even number of pixels in 64..8192");
+    throw ParameterError("texture_size", " " + std::to_string(size) + ": expected an even number of pixels in 64..8192");
   return {.tile = size / 2, .gutter = std::max(2, size / 64)};
 }
 

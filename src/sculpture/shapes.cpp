@@ -181,8 +181,8 @@ PolygonMesh moebius(int64_t faces) {
 }
 
 PolygonMesh make_shape(std::string_view name, int64_t faces, int genus) {
-  if (faces < 1) throw UsageError("--faces must be at least 1 (got " + std::to_string(faces) + ")");
-  if (faces > 500'000'000) throw UsageError("--faces must be at most 500000000 (got " + std::to_string(faces) + ")");
+  if (faces < 1) throw ParameterError("faces", " must be at least 1 (got " + std::to_string(faces) + ")");
+  if (faces > 500'000'000) throw ParameterError("faces", " must be at most 500000000 (got " + std::to_string(faces) + ")");
   if (name == "sphere") return sphere(faces);
   if (name == "torus") return torus(faces);
   if (name == "pretzel") return genus_surface(2, faces);

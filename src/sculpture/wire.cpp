@@ -488,9 +488,9 @@ void require_indexable(int64_t triangles, const std::string& what) {
 
 ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
   if (options.radius && (!(*options.radius > 0) || !std::isfinite(*options.radius)))
-    throw UsageError("the wire radius must be a positive number (got " + std::to_string(*options.radius) + ")");
+    throw ParameterError("radius", " must be a positive number (got " + std::to_string(*options.radius) + ")");
   if (options.shape == WireShape::wire && options.sides < 3)
-    throw UsageError("a wire needs at least 3 sides (got " + std::to_string(options.sides) + ")");
+    throw ParameterError("sides", " must be at least 3 (got " + std::to_string(options.sides) + ")");
   require_indexable(constant_wire_triangles(cycle.num_triangles(), options),
                     options.shape == WireShape::wire
                         ? "the wire of " + std::to_string(options.sides) + " sides at " + std::to_string(options.curve.samples) + " samples a segment"
@@ -537,12 +537,11 @@ PolygonMesh split_quads(const PolygonMesh& mesh, std::vector<Vec3> positions) {
 } // namespace
 
 VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
-  auto unit = [](double v) { return v >= 0 && v <= 1; };
-  if (!unit(options.s) || !unit(options.t))
-    throw UsageError("--s and --t must be between 0 and 1 (got s=" + std::to_string(options.s) + ", t=" + std::to_string(options.t) + ")");
+  for (const auto& [name, value] : {std::pair{"s", options.s}, {"t", options.t}})
+    if (!(value >= 0 && value <= 1)) throw ParameterError(name, " must be between 0 and 1 (got " + std::to_string(value) + ")");
   if (!(options.thickness >= 0) || !std::isfinite(options.thickness))
-    throw UsageError("--thickness must be 0 (automatic) or a positive number (got " + std::to_string(options.thickness) + ")");
-  if (options.levels < 0) throw UsageError("--levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+    throw ParameterError("thickness", " must be 0 (automatic) or a positive number (got " + std::to_string(options.thickness) + ")");
+  if (options.levels < 0) throw ParameterError("levels", " must be >= 0 (got " + std::to_string(options.levels) + ")");
   require_indexable(variable_wire_triangles(cycle.num_triangles(), options),
                     "the variable " + std::string(options.shape == WireShape::wire ? "wire" : "ribbon") + " at " +
                         std::to_string(options.levels) + " levels");

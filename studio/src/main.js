@@ -430,3 +430,13 @@ drop.addEventListener('drop', (e) => {
   if (e.dataTransfer.files[0]) upload(e.dataTransfer.files[0]);
 });
 showModeControls();
+
+// Each control's help is its parameter's, the text `meander curve|wire|duotone --help` gives.
+api('/api/parameters').then((reply) => reply.json()).then((modes) => {
+  for (const list of Object.values(modes)) {
+    for (const p of list) {
+      const label = $(p.name === 'colors' ? 'color0' : p.name.replaceAll('_', '-'))?.closest('label');
+      if (label && !label.title) label.title = p.help;
+    }
+  }
+}).catch(() => {}); // help only: the controls work without it

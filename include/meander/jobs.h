@@ -1,0 +1,97 @@
+// The wire and duotone jobs, as the CLI's `wire` and `duotone`, the studio and scripts
+// run them, so that every client makes the same thing from the same parameters
+// (parameters.h describes them). A wire is make_curve (pipeline.h) with wire_curve_job,
+// then make_wire; a duotone is make_duotone (duotone.h), then paint_duotone: two steps,
+// so that a client can refuse between them a result too large for its memory. Pictures
+// of a result: the *_scene functions.
+#pragma once
+
+#include "meander/duotone.h"
+#include "meander/pipeline.h"
+#include "meander/printability.h"
+#include "meander/render.h"
+#include "meander/wire.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace meander {
+
+enum class WireMethod {
+  constant, // a polygon or line swept along the smooth curve (constant_wire)
+  variable, // trapezoids inside the cycle's triangles, smoothed by Catmull-Clark (variable_wire)
+};
+
+// Parses "constant" | "variable"; throws UsageError otherwise.
+WireMethod parse_wire_method(std::string_view name);
+
+struct WireJob {
+  CurveJob curve;
+  WireMethod method = WireMethod::constant;
+  WireShape shape = WireShape::wire;
+  std::optional<double> radius; // constant: > 0, or none for the largest clear one
+  int sides = 8;                // constant wire
+  double s = 0.6, t = 0.6, thickness = 0;
+  int levels = 2;
+  // Variable: the mesh is first made ready for slabs (SlabMeshOptions: stars, caps over
+  // cap_angle flipped, needles collapsed) unless keep_faces.
+  double cap_angle = 120;
+  bool keep_faces = false;
+  // The printability report: none (a preview), or with the thickness of a wire measured
+  // (a ribbon has none) when measure_thickness, and judged against min_thickness.
+  bool report = true;
+  bool measure_thickness = true;
+  double min_thickness = 0;
+};
+
+// The curve job a wire is made on: job.curve, with the slab mesh of the variable method.
+CurveJob wire_curve_job(const WireJob& job);
+
+// How many triangles make_wire would make on a curve of this many cycle triangles.
+int64_t wire_triangles(int64_t cycle_triangles, const WireJob& job);
+
+struct WireResult {
+  PolygonMesh mesh;
+  double radius = 0; // constant: the radius used
+  PrintabilityReport report;
+  // Of a self-intersecting wire: the cycle's triangles that cross others
+  // (crossing_cycle_triangles), where no wire that follows the surface can be clear.
+  std::vector<int32_t> surface_crossings;
+};
+
+// The wire on a curve made with wire_curve_job(job), then its report. Throws
+// TopologyError when no radius avoids a self-intersection, ParameterError for values out
+// of range, and what constant_wire, variable_wire and check_printability throw. Appends
+// to `times` if given.
+WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times = nullptr);
+
+// What the slab mesh changed, as sentences ("flipped 3 edges facing an angle over 120
+// degrees"), none when nothing; for the user to read beside the result.
+std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob& job);
+
+struct DuotoneJob {
+  DuotoneOptions duotone;
+  TileOptions tiles;
+  int subdivide = 0; // Catmull-Clark levels of the painted surface
+};
+
+// The duotone make_duotone(mesh, connectivity, job.duotone) made, painted with
+// job.tiles and subdivided job.subdivide levels. `atlas`, if not empty, is
+// duotone_atlas(job.tiles) already made. Throws ParameterError for values out of range,
+// and what duotone_surface and subdivide throw. Appends to `times` if given.
+TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas = {},
+                           StageTimes* times = nullptr);
+
+// The colours of the pictures: a copper wire on a light grey surface.
+inline constexpr Rgb wire_color{0.72f, 0.45f, 0.2f};
+inline constexpr Rgb surface_color{0.82f, 0.82f, 0.82f};
+
+// The pictures, as in the paper's figures: the curve with the surface (the cycle's
+// triangles) hiding its back parts; a wire half sunk in that surface, drawn `occluder`;
+// a ribbon, which lies in the surface, alone; a duotone as painted.
+Scene curve_scene(const CurveResult& curve, MeshStyle occluder = MeshStyle::hidden);
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder = MeshStyle::hidden);
+Scene duotone_scene(const TexturedMesh& surface);
+
+} // namespace meander

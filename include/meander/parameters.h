@@ -1,0 +1,157 @@
+// Every parameter of the curve, wire and duotone jobs, described once (name, range,
+// choices, help; the default is the job struct's): the CLI's options, the studio's
+// request keys and its help (GET /api/parameters), and the jobs' own checks are all
+// made from these descriptions, so a parameter is added in one place. A name is
+// snake_case, as the studio and scripts spell it ("texture_size"); the CLI spells it
+// --texture-size.
+#pragma once
+
+#include "meander/jobs.h"
+
+#include <cmath>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace meander {
+
+struct Parameter {
+  std::string_view name;
+  std::string_view help;
+  // Numbers: the range, both ends allowed.
+  double min = -INFINITY, max = INFINITY;
+  // Names: the accepted ones (radius, a positive number or a name, lists its name).
+  std::span<const std::string_view> choices;
+};
+
+// The value of parameter p from text, as the CLI gets it and the studio gets names:
+// throws ParameterError naming p ("samples: expected an integer in [1, 1000], got 0").
+// T is int, uint64_t, double, bool, one of the jobs' enums, std::optional<double>
+// (radius: a positive number or "auto") or std::array<Color8, 2> (colors).
+template <class T> void set_parameter(const Parameter& p, std::string_view text, T& value);
+
+// A value as set_parameter reads it: the default shown in help texts.
+template <class T> std::string parameter_text(const T& value);
+
+// Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
+void check_parameter(const Parameter& p, double value, bool integer);
+
+// Calls visit(parameter, field) for each parameter of a CurveJob, WireJob or DuotoneJob
+// (const or not), in the order the help lists them; `field` is a reference into the job.
+template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit);
+
+// Throws ParameterError for the first value of the job out of its parameter's range.
+void check_parameters(const CurveJob& job);
+void check_parameters(const WireJob& job);
+void check_parameters(const DuotoneJob& job);
+
+// The descriptions.
+namespace parameters {
+
+inline constexpr std::string_view quad_choices[] = {"dual-simplest", "catmull-clark", "none"};
+inline constexpr std::string_view tree_choices[] = {"random", "uniform", "bfs", "dfs", "shaped"};
+inline constexpr std::string_view smooth_choices[] = {"bspline", "catmull-rom", "none"};
+inline constexpr std::string_view method_choices[] = {"constant", "variable"};
+inline constexpr std::string_view shape_choices[] = {"wire", "ribbon"};
+inline constexpr std::string_view radius_choices[] = {"auto"};
+inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
+inline constexpr std::string_view rule_choices[] = {"tree", "flip"};
+inline constexpr std::string_view tiles_choices[] = {"truchet", "outline", "triangles", "stripes", "dots"};
+
+inline constexpr Parameter quad{.name = "quad", .help = "quadrangulation", .choices = quad_choices};
+inline constexpr Parameter tree{.name = "tree",
+                                .help = "spanning tree strategy: the style of the meander (shaped: random, preferring "
+                                        "well-shaped triangles)",
+                                .choices = tree_choices};
+inline constexpr Parameter seed{.name = "seed", .help = "random seed (same seed, same output)"};
+inline constexpr Parameter smooth{.name = "smooth", .help = "smoothing of the control polygon", .choices = smooth_choices};
+inline constexpr Parameter samples{.name = "samples", .help = "points per control polygon segment", .min = 1, .max = 1000};
+
+inline constexpr Parameter method{.name = "method",
+                                  .help = "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
+                                          "inside the cycle's triangles, smoothed by Catmull-Clark",
+                                  .choices = method_choices};
+inline constexpr Parameter shape{.name = "shape", .help = "wire (closed tube) or ribbon (band on the surface)", .choices = shape_choices};
+inline constexpr Parameter radius{.name = "radius",
+                                  .help = "constant: tube radius or half the ribbon width in mesh units, or auto: the "
+                                          "largest that does not self-intersect",
+                                  .choices = radius_choices};
+inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon", .min = 3, .max = 64};
+inline constexpr Parameter s{.name = "s", .help = "variable: trapezoid size across the curve (1 covers the surface)", .min = 0, .max = 1};
+inline constexpr Parameter t{.name = "t", .help = "variable: trapezoid size along the curve", .min = 0, .max = 1};
+inline constexpr Parameter thickness{.name = "thickness",
+                                     .help = "variable wire: slab thickness in mesh units (0: half the local ribbon width)",
+                                     .min = 0};
+inline constexpr Parameter cap_angle{.name = "cap_angle",
+                                     .help = "variable: first flip the long edge of flat triangles whose largest angle "
+                                             "exceeds this many degrees (180: flip none)",
+                                     .min = 90,
+                                     .max = 180};
+inline constexpr Parameter keep_faces{.name = "keep_faces",
+                                      .help = "variable: build on the mesh's faces as they are, without splitting polygons "
+                                              "of 5 or more sides into triangles, flipping flat triangles or collapsing "
+                                              "the short edges of needles and of triangles folded over"};
+inline constexpr Parameter levels{.name = "levels", .help = "variable: Catmull-Clark subdivision levels", .min = 0, .max = 6};
+inline constexpr Parameter min_thickness{.name = "min_thickness",
+                                         .help = "wire: the thinnest wall the printer makes, in mesh units (about twice "
+                                                 "the nozzle width); thinner is reported as not printable",
+                                         .min = 0};
+
+inline constexpr Parameter duotone_quad{.name = "quad",
+                                        .help = "2-colourable quads: catmull-clark (dual-simplest on a mesh with "
+                                                "boundary), dual-simplest (larger tiles), none (an all-quad closed input "
+                                                "whose vertices are 2-colourable)",
+                                        .choices = duotone_quad_choices};
+inline constexpr Parameter rule{.name = "rule",
+                                .help = "tree: a spanning tree of the yellow diagonals (the reviewer's rule); flip: random "
+                                        "diagonals flipped until one curve (the paper's)",
+                                .choices = rule_choices};
+inline constexpr Parameter duotone_tree{.name = "tree", .help = "which spanning tree: the look", .choices = {tree_choices, 4}};
+inline constexpr Parameter colors{.name = "colors",
+                                  .help = "the two colours C1,C2: names (yellow, gold, blue, navy, red, ...) or #rrggbb"};
+inline constexpr Parameter tiles{.name = "tiles", .help = "tile style", .choices = tiles_choices};
+inline constexpr Parameter texture_size{.name = "texture_size", .help = "texture atlas width in pixels (even)", .min = 64, .max = 8192};
+inline constexpr Parameter subdivide{.name = "subdivide",
+                                     .help = "Catmull-Clark subdivision levels of the textured surface (OpenSubdiv, "
+                                             "texture coordinates carried along)",
+                                     .min = 0,
+                                     .max = 5};
+
+} // namespace parameters
+
+template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit) {
+  using Plain = std::remove_const_t<Job>;
+  static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob>);
+  if constexpr (std::is_same_v<Plain, CurveJob>) {
+    visit(parameters::quad, job.quadrangulation);
+    visit(parameters::tree, job.cycle.tree);
+    visit(parameters::seed, job.cycle.seed);
+    visit(parameters::smooth, job.curve.smoothing);
+    visit(parameters::samples, job.curve.samples);
+  } else if constexpr (std::is_same_v<Plain, WireJob>) {
+    visit(parameters::method, job.method);
+    visit(parameters::shape, job.shape);
+    visit_parameters(job.curve, visit);
+    visit(parameters::radius, job.radius);
+    visit(parameters::sides, job.sides);
+    visit(parameters::s, job.s);
+    visit(parameters::t, job.t);
+    visit(parameters::thickness, job.thickness);
+    visit(parameters::cap_angle, job.cap_angle);
+    visit(parameters::keep_faces, job.keep_faces);
+    visit(parameters::levels, job.levels);
+    visit(parameters::min_thickness, job.min_thickness);
+  } else {
+    visit(parameters::duotone_quad, job.duotone.quadrangulation);
+    visit(parameters::rule, job.duotone.rule);
+    visit(parameters::duotone_tree, job.duotone.tree);
+    visit(parameters::seed, job.duotone.seed);
+    visit(parameters::colors, job.tiles.colors);
+    visit(parameters::tiles, job.tiles.style);
+    visit(parameters::texture_size, job.tiles.texture_size);
+    visit(parameters::subdivide, job.subdivide);
+  }
+}
+
+} // namespace meander

@@ -1,0 +1,130 @@
+#include "meander/jobs.h"
+
+#include "meander/error.h"
+#include "meander/parameters.h"
+#include "meander/subdivide.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace meander {
+
+namespace {
+
+void lap(StageTimes* times, const char* stage, std::chrono::steady_clock::time_point& start) {
+  const auto now = std::chrono::steady_clock::now();
+  if (times) times->emplace_back(stage, std::chrono::duration<double>(now - start).count());
+  start = now;
+}
+
+ConstantWireOptions constant_options(const WireJob& job) {
+  return {.shape = job.shape, .radius = job.radius, .sides = job.sides, .curve = job.curve.curve};
+}
+
+VariableWireOptions variable_options(const WireJob& job) {
+  return {.shape = job.shape, .s = job.s, .t = job.t, .thickness = job.thickness, .levels = job.levels};
+}
+
+} // namespace
+
+WireMethod parse_wire_method(std::string_view name) {
+  if (name == "constant") return WireMethod::constant;
+  if (name == "variable") return WireMethod::variable;
+  throw UsageError("unknown wire method '" + std::string(name.substr(0, 40)) + "' (expected constant or variable)");
+}
+
+CurveJob wire_curve_job(const WireJob& job) {
+  CurveJob curve = job.curve;
+  if (job.method == WireMethod::variable && !job.keep_faces) {
+    curve.slab_mesh = SlabMeshOptions{};
+    if (job.cap_angle < 180) curve.slab_mesh->caps->cap_angle_degrees = job.cap_angle;
+    else curve.slab_mesh->caps.reset();
+  }
+  return curve;
+}
+
+int64_t wire_triangles(int64_t cycle_triangles, const WireJob& job) {
+  return job.method == WireMethod::constant ? constant_wire_triangles(cycle_triangles, constant_options(job))
+                                            : variable_wire_triangles(cycle_triangles, variable_options(job));
+}
+
+WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times) {
+  check_parameters(job);
+  auto start = std::chrono::steady_clock::now();
+  WireResult result;
+  bool known_clear = false; // variable_wire searched its result already
+  if (job.method == WireMethod::constant) {
+    ConstantWire made = constant_wire(curve.quads, curve.cycle, constant_options(job));
+    if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");
+    result.mesh = std::move(made.mesh);
+    result.radius = made.radius;
+  } else {
+    VariableWire made = variable_wire(curve.quads, curve.cycle, variable_options(job));
+    result.mesh = std::move(made.mesh);
+    known_clear = made.clear;
+  }
+  lap(times, "wire", start);
+  if (!job.report) return result;
+  result.report = check_printability(result.mesh, {.known_clear = known_clear,
+                                                   .thickness = job.measure_thickness && job.shape == WireShape::wire,
+                                                   .required_thickness = job.min_thickness});
+  if (result.report.self_intersecting) result.surface_crossings = crossing_cycle_triangles(curve.quads, curve.cycle);
+  lap(times, "report", start);
+  return result;
+}
+
+std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob& job) {
+  std::vector<std::string> notes;
+  const auto count = [](int64_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  char angle[32];
+  std::snprintf(angle, sizeof angle, "%g", job.cap_angle);
+  if (curve.stars > 0)
+    notes.push_back("split " + count(curve.stars, "polygon", "polygons") + " of " + std::to_string(SlabMeshOptions{}.star_sides) +
+                    " or more sides into triangles around " + (curve.stars == 1 ? "its centre" : "their centres"));
+  if (curve.cap_flips > 0) notes.push_back("flipped " + count(curve.cap_flips, "edge", "edges") + " facing an angle over " + angle + " degrees");
+  if (curve.cap_cuts > 0)
+    notes.push_back("cut off " + count(curve.cap_cuts, "triangle", "triangles") + " with an angle over " + angle + " degrees on the boundary");
+  if (curve.needle_collapses > 0) {
+    std::snprintf(angle, sizeof angle, "%g", NeedleCollapseOptions{}.needle_angle_degrees);
+    notes.push_back("collapsed " + count(curve.needle_collapses, "short edge", "short edges") + " of needles (an angle under " + angle +
+                    " degrees) or of triangles folded over their neighbours");
+  }
+  return notes;
+}
+
+TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times) {
+  check_parameters(job);
+  auto start = std::chrono::steady_clock::now();
+  TexturedMesh surface = atlas.empty() ? duotone_surface(duotone, job.tiles) : duotone_surface(duotone, job.tiles, atlas);
+  lap(times, "tiles", start);
+  if (job.subdivide > 0) {
+    surface = subdivide(surface, {.levels = job.subdivide});
+    lap(times, "subdivide", start);
+  }
+  return surface;
+}
+
+Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {
+  Scene scene;
+  // The occluder is the triangulated quad mesh the curve was built on: on non-planar
+  // polygons a fan of the input faces would cut through the curve.
+  scene.meshes.push_back({.mesh = cycle_triangles(curve.quads, curve.cycle), .color = surface_color, .style = occluder});
+  scene.curves.push_back({.curves = curve.curves});
+  return scene;
+}
+
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder) {
+  Scene scene;
+  scene.meshes.push_back({.mesh = std::move(wire), .color = wire_color});
+  if (shape == WireShape::wire)
+    scene.meshes.push_back({.mesh = cycle_triangles(curve.quads, curve.cycle), .color = surface_color, .style = occluder});
+  return scene;
+}
+
+Scene duotone_scene(const TexturedMesh& surface) {
+  Scene scene;
+  scene.meshes.push_back({.mesh = surface.mesh, .appearance = surface.appearance});
+  return scene;
+}
+
+} // namespace meander

@@ -1,0 +1,152 @@
+#include "meander/parameters.h"
+
+#include "meander/error.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <optional>
+
+namespace meander {
+
+namespace {
+
+// The text as a message quotes it, cut short.
+std::string shown(std::string_view text) {
+  return text.size() > 40 ? std::string(text.substr(0, 40)) + "..." : std::string(text);
+}
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+[[noreturn]] void refuse_number(const Parameter& p, bool integer, std::string_view got) {
+  std::string range = integer ? "an integer" : "a number";
+  if (std::isfinite(p.min) && std::isfinite(p.max)) range += " in [" + number_text(p.min) + ", " + number_text(p.max) + "]";
+  else if (std::isfinite(p.min)) range += " >= " + number_text(p.min);
+  throw ParameterError(p.name, ": expected " + range + ", got " + shown(got));
+}
+
+template <class T> T number(const Parameter& p, std::string_view text) {
+  T value{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) refuse_number(p, std::is_integral_v<T>, text);
+  check_parameter(p, double(value), std::is_integral_v<T>);
+  return value;
+}
+
+// Each enum's names, as its parameter lists them.
+std::span<const std::string_view> names(Quadrangulation) { return parameters::quad_choices; }
+std::span<const std::string_view> names(TreeStrategy) { return parameters::tree_choices; }
+std::span<const std::string_view> names(Smoothing) { return parameters::smooth_choices; }
+std::span<const std::string_view> names(WireMethod) { return parameters::method_choices; }
+std::span<const std::string_view> names(WireShape) { return parameters::shape_choices; }
+std::span<const std::string_view> names(DuotoneRule) { return parameters::rule_choices; }
+std::span<const std::string_view> names(TileStyle) { return parameters::tiles_choices; }
+
+Quadrangulation parse(std::string_view text, Quadrangulation*) { return parse_quadrangulation(text); }
+TreeStrategy parse(std::string_view text, TreeStrategy*) { return parse_tree_strategy(text); }
+Smoothing parse(std::string_view text, Smoothing*) { return parse_smoothing(text); }
+WireMethod parse(std::string_view text, WireMethod*) { return parse_wire_method(text); }
+WireShape parse(std::string_view text, WireShape*) { return parse_wire_shape(text); }
+DuotoneRule parse(std::string_view text, DuotoneRule*) { return parse_duotone_rule(text); }
+TileStyle parse(std::string_view text, TileStyle*) { return parse_tile_style(text); }
+
+std::string listed(std::span<const std::string_view> choices) {
+  std::string list;
+  for (size_t k = 0; k < choices.size(); ++k)
+    list += std::string(k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + std::string(choices[k]);
+  return list;
+}
+
+template <class Job> void check_numbers(const Job& job) {
+  visit_parameters(job, [](const Parameter& p, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    if constexpr (std::is_arithmetic_v<V> && !std::is_same_v<V, bool>) check_parameter(p, double(value), std::is_integral_v<V>);
+    else if constexpr (std::is_same_v<V, std::optional<double>>)
+      if (value && !(*value > 0)) throw ParameterError(p.name, " must be a positive number or auto (got " + number_text(*value) + ")");
+  });
+}
+
+} // namespace
+
+void check_parameter(const Parameter& p, double value, bool integer) {
+  if (!std::isfinite(value) || value < p.min || value > p.max || (integer && value != std::floor(value)))
+    refuse_number(p, integer, number_text(value));
+}
+
+template <class T> void set_parameter(const Parameter& p, std::string_view text, T& value) {
+  if constexpr (std::is_same_v<T, bool>) {
+    if (text != "true" && text != "false") throw ParameterError(p.name, ": expected true or false, got " + shown(text));
+    value = text == "true";
+  } else if constexpr (std::is_arithmetic_v<T>) {
+    value = number<T>(p, text);
+  } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+    if (text == "auto") {
+      value.reset();
+      return;
+    }
+    double r = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), r);
+    if (error != std::errc() || end != text.data() + text.size() || !(r > 0) || !std::isfinite(r))
+      throw ParameterError(p.name, ": expected a positive number or auto, got " + shown(text));
+    value = r;
+  } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
+    value = parse_duotone_colors(text); // its refusals name the parameter
+  } else {
+    if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
+      throw ParameterError(p.name, ": unknown value '" + shown(text) + "' (expected " + listed(p.choices) + ")");
+    value = parse(text, static_cast<T*>(nullptr));
+  }
+}
+
+template <class T> std::string parameter_text(const T& value) {
+  if constexpr (std::is_same_v<T, bool>) {
+    return value ? "true" : "false";
+  } else if constexpr (std::is_integral_v<T>) {
+    return std::to_string(value);
+  } else if constexpr (std::is_arithmetic_v<T>) {
+    return number_text(value);
+  } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+    return value ? number_text(*value) : "auto";
+  } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
+    char text[16];
+    std::snprintf(text, sizeof text, "#%02x%02x%02x,#%02x%02x%02x", value[0][0], value[0][1], value[0][2], value[1][0],
+                  value[1][1], value[1][2]);
+    return text;
+  } else {
+    for (std::string_view name : names(value))
+      if (parse(name, static_cast<T*>(nullptr)) == value) return std::string(name);
+    return {};
+  }
+}
+
+#define MEANDER_PARAMETER_TYPE(...)                                                                                   \
+  template void set_parameter<__VA_ARGS__>(const Parameter&, std::string_view, __VA_ARGS__&);                        \
+  template std::string parameter_text<__VA_ARGS__>(const __VA_ARGS__&);
+MEANDER_PARAMETER_TYPE(int)
+MEANDER_PARAMETER_TYPE(uint64_t)
+MEANDER_PARAMETER_TYPE(double)
+MEANDER_PARAMETER_TYPE(bool)
+MEANDER_PARAMETER_TYPE(Quadrangulation)
+MEANDER_PARAMETER_TYPE(TreeStrategy)
+MEANDER_PARAMETER_TYPE(Smoothing)
+MEANDER_PARAMETER_TYPE(WireMethod)
+MEANDER_PARAMETER_TYPE(WireShape)
+MEANDER_PARAMETER_TYPE(DuotoneRule)
+MEANDER_PARAMETER_TYPE(TileStyle)
+MEANDER_PARAMETER_TYPE(std::optional<double>)
+MEANDER_PARAMETER_TYPE(std::array<Color8, 2>)
+#undef MEANDER_PARAMETER_TYPE
+
+void check_parameters(const CurveJob& job) { check_numbers(job); }
+void check_parameters(const WireJob& job) {
+  check_numbers(job);
+  if (job.shape == WireShape::ribbon && job.min_thickness > 0)
+    throw ParameterError(parameters::min_thickness.name, " applies to wires: a ribbon is a band with no thickness to measure");
+}
+void check_parameters(const DuotoneJob& job) { check_numbers(job); }
+
+} // namespace meander
