@@ -12,7 +12,7 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
 # cpp-httplib: the studio's server (`meander serve`).
 DEBIAN_PACKAGES += libcpp-httplib-dev
 
-.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-check
+.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -79,6 +79,11 @@ test-sanitize: sanitize-config validator
 fuzz: sanitize-config
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
 	fuzz/run.sh $(SANITIZE_BUILD) $(FUZZ_SECONDS)
+
+# Minimises what `make fuzz` found into fuzz/corpus/ (committed, replayed by make test).
+fuzz-corpus: sanitize-config
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers
+	fuzz/run.sh $(SANITIZE_BUILD) --merge
 
 fuzz-check: sanitize-config
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers

@@ -7,6 +7,11 @@
 #          corpus/, which a later run starts from. FUZZ_TIMEOUT (default 10) is the
 #          seconds of wall clock one input may take: raise it for runs niced beside other
 #          work, where a starved fuzzer waits for a core.
+#        fuzz/run.sh BUILD --merge [TARGET...]
+#          (make fuzz-corpus) replaces fuzz/corpus/TARGET/, the corpus committed and
+#          replayed by make test, with the smallest set of its inputs and those of
+#          BUILD/fuzz-runs/TARGET/corpus/ (make fuzz's) that covers what they all cover
+#          (libFuzzer -merge=1).
 #        fuzz/run.sh BUILD --runs N [TARGET...]
 #          (make test) runs every seed, then N inputs more made from a fixed seed into a
 #          fresh corpus: the same inputs on any machine, busy or not. For that the target
@@ -17,16 +22,20 @@
 #          allocation (1 GiB) rather than by resident size. Runs still part ways now and
 #          then where coverage follows the sanitizer allocator's addresses, and in
 #          fuzz_studio_http, whose server draws its session keys at random.
-# Seeds: fuzz/seeds/TARGET/ (hand-made), the files of tests/corpus/ and the small meshes
+# Seeds: fuzz/seeds/TARGET/ (hand-made), fuzz/corpus/TARGET/ (minimised from long runs), the files of tests/corpus/ and the small meshes
 # of ../shared/meshes with the target's extension (linked in place, not copied), and the
 # regressions of tests/regressions/TARGET/.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 build=$(cd "$1" && pwd)
+merge=
 if [ "$2" = --runs ]; then
   runs=$3 seconds=
   shift 3
+elif [ "$2" = --merge ]; then
+  merge=1 runs= seconds=
+  shift 2
 else
   runs= seconds=$2
   shift 2
@@ -55,6 +64,15 @@ setarch "$(uname -m)" -R true 2> /dev/null && one_core=(setarch "$(uname -m)" -R
 
 for target in "${targets[@]}"; do
   work=$build/fuzz-runs/$target
+  if [ -n "$merge" ]; then
+    merged=$work/merged
+    rm -rf "$merged" && mkdir -p "$merged" "$here/corpus/$target" "$work/corpus"
+    "$build/fuzz/$target" -merge=1 -max_len=16384 -rss_limit_mb=1024 "$merged" "$here/corpus/$target" "$work/corpus" > "$work/merge.txt" 2>&1 ||
+      { tail -n 30 "$work/merge.txt"; exit 1; }
+    rm -rf "$here/corpus/$target" && mv "$merged" "$here/corpus/$target"
+    echo "fuzz: $target: $(ls "$here/corpus/$target" | wc -l) inputs in fuzz/corpus/$target"
+    continue
+  fi
   mkdir -p "$work/seeds"
   find "$work/seeds" -type l -delete
   case $target in
@@ -67,7 +85,7 @@ for target in "${targets[@]}"; do
     link_files "$meshes" "$work/seeds" "${extensions[@]}"
   fi
   seeds=("$work/seeds")
-  for folder in "$here/seeds/$target" "$root/tests/regressions/$target"; do
+  for folder in "$here/seeds/$target" "$here/corpus/$target" "$root/tests/regressions/$target"; do
     [ -d "$folder" ] && seeds+=("$folder")
   done
   # An input is at most 16 KiB: 1 GiB of memory is out of proportion to it (a count
