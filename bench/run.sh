@@ -143,7 +143,7 @@ echo
 echo "| target | measured | met |"
 echo "|---|---:|---|"
 for format in stl ply; do
-  rate=$(sed -n "s/^write_binary.${format}_median .* \([0-9.]*\)M\/s .*/\1/p" "$scratch/writers.txt")
+  rate=$(sed -n "s/^write_binary\.${format}\/.*_median .* \([0-9.]*\)M\/s .*/\1/p" "$scratch/writers.txt")
   printf '| binary %s writer >= 20 M triangles/s (3M triangles) | %s M/s | %s |\n' "${format^^}" "${rate:--}" \
     "$( [ -n "$rate" ] && verdict 20 "$rate" || echo -)"
 done
