@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `make bench`: per-stage times and peak memory of the pipeline, Meander side by side with
-# OpenMesh and tinyobjloader, and the end-to-end CLI run on a 10M-triangle binary PLY,
-# printed as markdown ready for docs/benchmarks.md. Builds nothing (`make bench` builds
-# first); generated meshes go to $BUILD/bench/meshes.
+# OpenMesh and tinyobjloader, the end-to-end CLI run on a 10M-triangle binary PLY, the mesh
+# writers, wires and duotones, and this machine's floors, printed as markdown ready for
+# docs/benchmarks.md. Builds nothing (`make bench` builds first); generated meshes go to
+# $BUILD/bench/meshes.
 #
 # Environment: BUILD (build folder, default build), RUNS (runs per stage timing, default 5),
 # CLI_RUNS (end-to-end runs, default 3), MEANDER_SHARED_MESHES (default ../shared/meshes).
@@ -15,7 +16,8 @@ cli_runs=${CLI_RUNS:-3}
 shared=${MEANDER_SHARED_MESHES:-../shared/meshes}
 meander=$build/meander
 scratch=$build/bench/meshes
-for tool in "$meander" "$build/bench/meander_bench_stages" "$build/bench/meander_bench_peers"; do
+for tool in "$meander" "$build/bench/meander_bench_stages" "$build/bench/meander_bench_peers" \
+  "$build/bench/meander_bench_writers" "$build/bench/meander_bench_sculptures" "$build/bench/meander_bench_floors"; do
   [ -x "$tool" ] || { echo "run.sh: $tool is missing: run 'make bench' (or make build) first" >&2; exit 1; }
 done
 for mesh in bunny_closed.off stanford-bunny_original_holes.obj; do
@@ -29,6 +31,7 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] :
 
 echo "## Machine"
 echo
+echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
 echo "- CPU: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores"
 echo "- memory: $(awk '/MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)"
 echo "- kernel: $(uname -sr)"
@@ -78,15 +81,16 @@ openmesh_ratio_10m=$(awk -F'|' '$2 ~ /^ sphere_10m.ply / { gsub(/ /, "", $8); pr
 measure=()
 [ -x /usr/bin/time ] && measure=(/usr/bin/time -f %M -o "$scratch/cli_rss_kb")
 curve=$scratch/curve_10m.ply
-# Runs `meander curve MESH -o $curve` $cli_runs times: the median wall clock in `seconds`,
-# the largest peak RSS in peak_kb (KiB, 0 without GNU time).
+# Runs `meander curve MESH -o $curve` $cli_runs times, with the environment variables given
+# after MESH: the median wall clock in `seconds`, the largest peak RSS in peak_kb (KiB, 0
+# without GNU time).
 time_curve() {
   rm -f "$scratch/cli_seconds"
   peak_kb=0
   for ((i = 0; i < cli_runs; ++i)); do
     rm -f "$curve"
     start=$(date +%s.%N)
-    "${measure[@]}" "$meander" curve "$1" -o "$curve"
+    "${measure[@]}" env "${@:2}" "$meander" curve "$1" -o "$curve"
     end=$(date +%s.%N)
     awk -v s="$start" -v e="$end" 'BEGIN { print e - s }' >> "$scratch/cli_seconds"
     [ ${#measure[@]} -eq 0 ] || peak_kb=$(( $(cat "$scratch/cli_rss_kb") > peak_kb ? $(cat "$scratch/cli_rss_kb") : peak_kb ))
@@ -99,6 +103,10 @@ time_curve() {
 time_curve "$scratch/sphere_10m_shuffled.ply"
 shuffled_seconds=$seconds
 shuffled_bytes=$(awk -v k="$peak_kb" -v t="$triangles_10m" 'BEGIN { printf "%.0f", k * 1024 / t }')
+# glibc puts every block it maps on transparent huge pages when the host asks it to: what
+# a host where huge pages pay can choose (Meander advises only its largest arrays).
+time_curve "$scratch/sphere_10m.ply" GLIBC_TUNABLES=glibc.malloc.hugetlb=1
+tunable_seconds=$seconds
 time_curve "$scratch/sphere_10m.ply"
 cli_seconds=$seconds
 
@@ -111,6 +119,7 @@ verdict() { awk -v a="$1" -v b="$2" 'BEGIN { print (a <= b ? "yes" : "no") }'; }
 printf '| 10M-triangle binary PLY to binary PLY curve <= 3 s | %.2f s | %s |\n' "$cli_seconds" "$(verdict "$cli_seconds" 3)"
 printf '| the same, vertices and faces shuffled (generate --shuffle 1) | %.2f s, peak %s B per triangle | %s |\n' \
   "$shuffled_seconds" "$shuffled_bytes" "$(verdict "$shuffled_seconds" 3)"
+printf '| 10M, not shuffled, under GLIBC_TUNABLES=glibc.malloc.hugetlb=1 | %.2f s | %s |\n' "$tunable_seconds" "$(verdict "$tunable_seconds" 3)"
 if [ -n "$openmesh_ratio_10m" ] && [ "$openmesh_ratio_10m" != - ]; then
   echo "| read + connectivity >= 5x faster than OpenMesh (10M) | $openmesh_ratio_10m | $(verdict 5 "${openmesh_ratio_10m%x}") |"
 else
@@ -122,6 +131,27 @@ if [ "$peak_kb" -gt 0 ]; then
 else
   echo "| peak memory <= 150 bytes per input triangle (CLI, 10M) | GNU time not installed | - |"
 fi
+
+# Google Benchmark's console table (medians), without the context lines it prints first.
+gbench_table() { echo '```'; "$@" | sed -n '/^---/,$p'; echo '```'; }
+
+echo
+echo "## Mesh writers (Google Benchmark, median of 9 repetitions)"
+echo
+gbench_table "$build/bench/meander_bench_writers" --benchmark_counters_tabular=true | tee "$scratch/writers.txt"
+echo
+echo "| target | measured | met |"
+echo "|---|---:|---|"
+for format in stl ply; do
+  rate=$(sed -n "s/^write_binary\.${format}\/.*_median .* \([0-9.]*\)M\/s .*/\1/p" "$scratch/writers.txt")
+  printf '| binary %s writer >= 20 M triangles/s (3M triangles) | %s M/s | %s |\n' "${format^^}" "${rate:--}" \
+    "$( [ -n "$rate" ] && verdict 20 "$rate" || echo -)"
+done
+
+echo
+echo "## Wires and duotone of $(basename "$shared/bunny_closed.off") (Google Benchmark, median of 5, variable wire 3)"
+echo
+gbench_table "$build/bench/meander_bench_sculptures" --benchmark_counters_tabular=true "$shared/bunny_closed.off"
 
 # What any program of the CLI's footprint and output pays here, whatever its algorithms:
 # 1.3 GiB of fresh memory (its peak) and a file the size of the 10M curve (2.23 GiB).
