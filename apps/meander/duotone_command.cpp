@@ -33,7 +33,7 @@ std::array<std::string, 2> region_paths(const std::string& text) {
 }
 
 // A subdivided duotone surface took 435 to 451 bytes per quad at its peak, written as
-// OBJ, on the 100k-face sphere at --subdivide 2 and 3 (docs/benchmarks.md).
+// OBJ, on the 100k-face sphere at --subdivide 2 and 3 (docs/duotone.md).
 constexpr double kBytesPerQuad = 480;
 
 void run_duotone(const DuotoneArgs& a) {

@@ -41,7 +41,7 @@ std::filesystem::path page_beside_program() {
 
 // Every update allocates the same large arrays again. glibc hands blocks of 128 KiB and
 // more back to the kernel when they are freed, and on this kind of virtual machine a
-// fresh page costs more than the work on it (docs/benchmarks.md, huge pages): a third of
+// fresh page costs more than the work on it: a third of
 // a preview's time went to zeroing pages. The server keeps up to 1 GiB of freed memory
 // in one arena instead, so that the next update, on any thread, reuses it; no block is
 // mapped on its own (which glibc does past 32 MiB whatever the threshold), so that a

@@ -25,7 +25,7 @@ struct WireArgs {
 };
 
 // Making and checking a wire takes 110 (constant wire) to 234 (variable ribbon) bytes
-// per triangle at its peak, measured on the 100k-face sphere (docs/benchmarks.md).
+// per triangle at its peak, measured on the 100k-face sphere (docs/wires.md).
 constexpr double kBytesPerTriangle = 240;
 
 // Refuses a wire that would not fit in memory, naming the largest --levels that fits or

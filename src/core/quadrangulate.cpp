@@ -59,7 +59,7 @@ QuadMesh quads_with_adjacency(PolygonMesh quad_faces) {
 // Dual of Simplest in three passes, each reading fewer of the input's arrays, so that the
 // consuming overload can release them in between (`release(pass)` after each pass): the
 // quads are the largest arrays so far, and every page the run takes fresh costs more than
-// the work done in it on a virtual machine (docs/benchmarks.md).
+// the work done in it on a virtual machine.
 template <typename Release>
 QuadMesh dual_simplest_passes(const PolygonMesh& mesh, std::vector<Vec3>&& positions, const Connectivity& c,
                               Release&& release) {

@@ -257,7 +257,7 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
 
 // A preview holds at most about this many elements when fewer curve samples can make it
 // so: what the page gets onto the screen in about a quarter of a second here (a variable
-// wire preview of 2.4M triangles, docs/benchmarks.md).
+// wire preview of 2.4M triangles, docs/studio.md, Speed).
 constexpr int64_t preview_budget = 2'500'000;
 
 // What is made: the wire's method and shape the mode's, and a preview's reductions
@@ -426,7 +426,7 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   if (vertices > UINT32_MAX || 4 * quads + 3 * triangles > UINT32_MAX || segments > UINT32_MAX)
     throw UsageError("result too large for the view (over 2^32 elements)");
   // The normals are computed here, not in the page: a JavaScript loop over millions of
-  // triangles took longer than making a preview (docs/benchmarks.md).
+  // triangles took longer than making a preview (docs/studio.md, Speed).
   const std::vector<Vec3> normals = shaded ? vertex_normals(mesh) : std::vector<Vec3>{};
   const size_t v = size_t(vertices), normal_bytes = shaded ? (3 * v + 3) / 4 * 4 : 0;
   std::string out(48 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 16 * size_t(quads) + 12 * size_t(triangles) +
