@@ -323,3 +323,28 @@ TEST(Glb, KhronosValidatorFindsNoErrorsOrWarnings) {
 
 } // namespace
 } // namespace meander
+
+namespace meander {
+namespace {
+
+// An uncompressed image whose header claims more pixels than its file holds is refused
+// before any pixel memory is taken (a 32-byte TGA claiming 15360 x 15360 pixels took
+// 1.6 GB, found by fuzz_image); the same header with its pixels is read.
+TEST(Image, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefused) {
+  const auto tga = [](uint16_t width, uint16_t height, size_t pixel_bytes) {
+    std::string bytes(18, '\0');
+    bytes[2] = 2; // uncompressed true colour
+    bytes[12] = char(width & 0xff), bytes[13] = char(width >> 8), bytes[14] = char(height & 0xff), bytes[15] = char(height >> 8);
+    bytes[16] = 24;
+    return bytes + std::string(pixel_bytes, '\x7f');
+  };
+  EXPECT_THAT(test::message_of<InputError>([&] { read_texture(tga(15360, 15360, 14), "big.tga"); }),
+              testing::HasSubstr("big.tga: cannot decode image: 15360x15360 pixels claimed by a file of 32 bytes"));
+  const Texture small = read_texture(tga(2, 3, 18), "small.tga");
+  EXPECT_EQ(small.width, 2);
+  EXPECT_EQ(small.height, 3);
+  EXPECT_THROW(read_texture("P6\n4000 4000\n255\n" + std::string(64, '\0'), "big.ppm"), InputError);
+}
+
+} // namespace
+} // namespace meander

@@ -68,6 +68,24 @@ bool png_chunks_fit(std::string_view bytes) {
   return true; // truncated: stb says so
 }
 
+// Whether the pixels the header of an uncompressed image claims fit in its bytes, and
+// those of a run-length TGA in 128 pixels a byte: stb_image allocates the whole picture
+// before reading it (1.6 GB for a 32-byte TGA claiming 15360 x 15360 pixels, found by
+// fuzz_image). Compressed formats (PNG, GIF, PSD, HDR, PIC) are bounded by max_side.
+bool claimed_pixels_fit(std::string_view bytes, int width, int height) {
+  const uint64_t pixels = uint64_t(width) * uint64_t(height), size = bytes.size();
+  if (bytes.starts_with("BM")) return pixels <= 8 * size; // 1 bit a pixel at the least
+  if (bytes.starts_with("P5") || bytes.starts_with("P6")) return pixels <= size;
+  for (std::string_view magic : {"\x89PNG", "GIF8", "8BPS", "\x53\x80\xF6\x34", "#?"})
+    if (bytes.starts_with(magic)) return true;
+  // A TGA (no magic): its image type is byte 2.
+  switch (bytes.size() > 2 ? uint8_t(bytes[2]) : 0) {
+  case 1: case 2: case 3: return pixels <= size;
+  case 9: case 10: case 11: return pixels <= 128 * size;
+  default: return true;
+  }
+}
+
 } // namespace
 
 Texture decode_image(std::string_view bytes, std::string_view name) {
@@ -81,6 +99,9 @@ Texture decode_image(std::string_view bytes, std::string_view name) {
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
     fail_input(name, std::string("cannot decode image: ") + stbi_failure_reason());
   check_size(width, height, name);
+  if (!claimed_pixels_fit(bytes, width, height))
+    fail_input(name, "cannot decode image: " + std::to_string(width) + "x" + std::to_string(height) +
+                         " pixels claimed by a file of " + std::to_string(bytes.size()) + " bytes");
   stbi_uc* pixels = stbi_load_from_memory(data, size, &width, &height, &channels, 4);
   if (!pixels) fail_input(name, std::string("cannot decode image: ") + stbi_failure_reason());
   Texture texture{.width = width, .height = height};
