@@ -2,6 +2,7 @@
 
 #include "meander/check.h"
 #include "meander/error.h"
+#include "core/vec3d.h"
 #include "triangle_bvh.h"
 
 #include <embree3/rtcore.h>
@@ -20,17 +21,10 @@
 namespace meander {
 namespace {
 
-// Geometry in double: float inputs promote exactly, and differences of floats of
+// Geometry in double (Vec3d): float inputs promote exactly, and differences of floats of
 // similar magnitude stay exact, so the signs below are exact for the small-integer and
 // axis-aligned configurations where ties matter (shared planes, touching corners) and
 // correct elsewhere unless a point lies within ~1e-16 relative of a plane.
-struct P3 {
-  double x, y, z;
-};
-P3 to_p3(Vec3 v) { return {v.x, v.y, v.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 int sign(double v) { return (v > 0) - (v < 0); }
 
 // The plane through a, b, c, to tell on which side points lie. The cross product and
@@ -38,11 +32,11 @@ int sign(double v) { return (v > 0) - (v < 0); }
 // triangles tests up to six points against each one's plane, and the pair search tests
 // tens of millions of pairs.
 struct Plane {
-  P3 a, b, c;
-  P3 normal;    // (b - a) x (c - a)
-  P3 magnitude; // per coordinate of the normal, the sum of the absolute products it is made of
-  Plane(P3 a_, P3 b_, P3 c_) : a(a_), b(b_), c(c_) {
-    const P3 ba = b - a, ca = c - a;
+  Vec3d a, b, c;
+  Vec3d normal;    // (b - a) x (c - a)
+  Vec3d magnitude; // per coordinate of the normal, the sum of the absolute products it is made of
+  Plane(Vec3d a_, Vec3d b_, Vec3d c_) : a(a_), b(b_), c(c_) {
+    const Vec3d ba = b - a, ca = c - a;
     normal = cross(ba, ca);
     magnitude = {std::abs(ba.y * ca.z) + std::abs(ba.z * ca.y), std::abs(ba.z * ca.x) + std::abs(ba.x * ca.z),
                  std::abs(ba.x * ca.y) + std::abs(ba.y * ca.x)};
@@ -53,8 +47,8 @@ struct Plane {
   // below it (d almost in the plane, as nearly coplanar faces of smooth ribbons are) the
   // determinant is recomputed in quadruple precision from the float coordinates, which
   // resolves it unless d is within ~1e-30 relative of the plane.
-  int side(P3 d) const {
-    const P3 da = d - a;
+  int side(Vec3d d) const {
+    const Vec3d da = d - a;
     const double det = dot(normal, da);
     const double permanent = magnitude.x * std::abs(da.x) + magnitude.y * std::abs(da.y) + magnitude.z * std::abs(da.z);
     if (std::abs(det) > 7.771561172376103e-16 * permanent) return sign(det);
@@ -69,19 +63,19 @@ struct Plane {
 
 // +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to (see
 // Plane::side).
-int orient3d(P3 a, P3 b, P3 c, P3 d) { return Plane(a, b, c).side(d); }
+int orient3d(Vec3d a, Vec3d b, Vec3d c, Vec3d d) { return Plane(a, b, c).side(d); }
 
 // The axis along which the normal of (a, b, c) is largest: dropping it projects the
 // triangle's plane onto a coordinate plane without collapsing it.
-int dominant_axis(P3 a, P3 b, P3 c) {
-  const P3 n = cross(b - a, c - a);
+int dominant_axis(Vec3d a, Vec3d b, Vec3d c) {
+  const Vec3d n = cross(b - a, c - a);
   const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
   return x >= y && x >= z ? 0 : y >= z ? 1 : 2;
 }
 
 // Orientation of a, b, c projected along `axis` (the other two axes in cyclic order).
-int orient2d(P3 a, P3 b, P3 c, int axis) {
-  const auto uv = [axis](P3 p) {
+int orient2d(Vec3d a, Vec3d b, Vec3d c, int axis) {
+  const auto uv = [axis](Vec3d p) {
     return axis == 0 ? std::pair{p.y, p.z} : axis == 1 ? std::pair{p.z, p.x} : std::pair{p.x, p.y};
   };
   const auto [ax, ay] = uv(a);
@@ -91,29 +85,29 @@ int orient2d(P3 a, P3 b, P3 c, int axis) {
 }
 
 // Closed segments ab and cd, in one plane projected along `axis`.
-bool segments_meet_2d(P3 a, P3 b, P3 c, P3 d, int axis) {
+bool segments_meet_2d(Vec3d a, Vec3d b, Vec3d c, Vec3d d, int axis) {
   const int o1 = orient2d(a, b, c, axis), o2 = orient2d(a, b, d, axis);
   const int o3 = orient2d(c, d, a, axis), o4 = orient2d(c, d, b, axis);
   if (o1 * o2 > 0 || o3 * o4 > 0) return false;
   if (o1 != 0 || o2 != 0) return true;
   // Collinear: overlap along the coordinate in which the line varies most.
-  const P3 e = b - a;
+  const Vec3d e = b - a;
   const double ex = std::abs(e.x), ey = std::abs(e.y), ez = std::abs(e.z);
-  const auto coordinate = [&](P3 p) { return ex >= ey && ex >= ez ? p.x : ey >= ez ? p.y : p.z; };
+  const auto coordinate = [&](Vec3d p) { return ex >= ey && ex >= ez ? p.x : ey >= ez ? p.y : p.z; };
   const double a1 = coordinate(a), b1 = coordinate(b), c1 = coordinate(c), d1 = coordinate(d);
   return std::min(a1, b1) <= std::max(c1, d1) && std::min(c1, d1) <= std::max(a1, b1);
 }
 
 // p in the closed triangle abc (not degenerate), all in one plane projected along `axis`.
-bool inside_triangle_2d(P3 p, P3 a, P3 b, P3 c, int axis) {
+bool inside_triangle_2d(Vec3d p, Vec3d a, Vec3d b, Vec3d c, int axis) {
   const int o1 = orient2d(a, b, p, axis), o2 = orient2d(b, c, p, axis), o3 = orient2d(c, a, p, axis);
   return !((o1 < 0 || o2 < 0 || o3 < 0) && (o1 > 0 || o2 > 0 || o3 > 0));
 }
 
 // The closed segment st meets the closed triangle abc (not degenerate), given the sides
 // of abc's plane that s and t lie on (ds, dt: Plane::side).
-bool segment_meets_triangle(P3 s, P3 t, int ds, int dt, const Plane& abc) {
-  const P3 a = abc.a, b = abc.b, c = abc.c;
+bool segment_meets_triangle(Vec3d s, Vec3d t, int ds, int dt, const Plane& abc) {
+  const Vec3d a = abc.a, b = abc.b, c = abc.c;
   if (ds * dt > 0) return false;
   if (ds == 0 && dt == 0) {
     const int axis = dominant_axis(a, b, c);
@@ -134,7 +128,7 @@ bool segment_meets_triangle(P3 s, P3 t, int ds, int dt, const Plane& abc) {
 // Two closed triangles with no vertex in common meet. Where they meet, the meeting set
 // is convex and its extreme points lie on edges, so some edge of one meets the other:
 // six segment tests after the cheap rejection by the planes.
-bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
+bool triangles_meet(const std::array<Vec3d, 3>& t, const std::array<Vec3d, 3>& u) {
   const Plane pu(u[0], u[1], u[2]);
   const int a[3] = {pu.side(t[0]), pu.side(t[1]), pu.side(t[2])}; // t's corners against u's plane
   if (a[0] == a[1] && a[1] == a[2] && a[0] != 0) return false;
@@ -150,7 +144,7 @@ bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
 
 // Direction a - v lies in the closed wedge of triangle (v, c, d) at v, given the side of
 // that triangle's plane a lies on (Plane::side).
-bool in_wedge(P3 v, P3 a, int side, P3 c, P3 d) {
+bool in_wedge(Vec3d v, Vec3d a, int side, Vec3d c, Vec3d d) {
   if (side != 0) return false;
   const int axis = dominant_axis(v, c, d);
   const int s = orient2d(v, c, d, axis);
@@ -161,7 +155,7 @@ bool in_wedge(P3 v, P3 a, int side, P3 c, P3 d) {
 // coincides with its wedge, so they meet beyond v iff an edge meets the other triangle
 // away from v: the far edges ab and cd anywhere, an edge through v only when it lies in
 // the other's plane and inside its wedge.
-bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
+bool meet_beyond_vertex(Vec3d v, Vec3d a, Vec3d b, Vec3d c, Vec3d d) {
   // Usual on a smooth surface: one triangle lies strictly on one side of the other's
   // plane except at v, so they cannot meet elsewhere. One plane and two signs decide it.
   const Plane vab(v, a, b);
@@ -177,7 +171,7 @@ bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
 // Triangles (u, w, a) and (u, w, b) sharing the edge uw meet beyond it iff they fold
 // onto each other: two planes through uw meet only in its line, so only coplanar
 // triangles on the same side of uw overlap.
-bool fold_over_edge(P3 u, P3 w, P3 a, P3 b) {
+bool fold_over_edge(Vec3d u, Vec3d w, Vec3d a, Vec3d b) {
   if (orient3d(u, w, a, b) != 0) return false;
   const int axis = dominant_axis(u, w, a);
   return orient2d(u, w, a, axis) == orient2d(u, w, b, axis);
@@ -216,7 +210,7 @@ bool intersect(const PolygonMesh& mesh, const Triangles& tris, int32_t i, int32_
         ui[shared] = b;
         ++shared;
       }
-  const auto p = [&](int32_t v) { return to_p3(mesh.positions[size_t(v)]); };
+  const auto p = [&](int32_t v) { return to_double(mesh.positions[size_t(v)]); };
   if (shared == 0)
     return triangles_meet({p(t[0]), p(t[1]), p(t[2])}, {p(u[0]), p(u[1]), p(u[2])});
   if (shared == 1) {
@@ -231,9 +225,9 @@ bool intersect(const PolygonMesh& mesh, const Triangles& tris, int32_t i, int32_
 }
 
 bool degenerate(const PolygonMesh& mesh, const std::array<int32_t, 3>& t) {
-  const P3 a = to_p3(mesh.positions[size_t(t[0])]), b = to_p3(mesh.positions[size_t(t[1])]),
-           c = to_p3(mesh.positions[size_t(t[2])]);
-  const P3 n = cross(b - a, c - a);
+  const Vec3d a = to_double(mesh.positions[size_t(t[0])]), b = to_double(mesh.positions[size_t(t[1])]),
+           c = to_double(mesh.positions[size_t(t[2])]);
+  const Vec3d n = cross(b - a, c - a);
   return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
@@ -300,13 +294,13 @@ void measure_components(const PolygonMesh& mesh, const Triangles& tris, const Me
   // tetrahedron with the origin. Relative to a point near the mesh (the box's centre) to
   // keep the terms small when the model sits far from the origin.
   const Box3& box = report.bounding_box;
-  const P3 centre = box.empty() ? P3{0, 0, 0} : to_p3((box.min + box.max) * 0.5f);
+  const Vec3d centre = box.empty() ? Vec3d{0, 0, 0} : to_double((box.min + box.max) * 0.5f);
   for (size_t i = 0; i < tris.corners.size(); ++i) {
     const int32_t k = topology.face_components[size_t(tris.face[i])];
     if (k < 0) continue;
     const std::array<int32_t, 3>& t = tris.corners[i];
-    const P3 a = to_p3(mesh.positions[size_t(t[0])]) - centre, b = to_p3(mesh.positions[size_t(t[1])]) - centre,
-             cc = to_p3(mesh.positions[size_t(t[2])]) - centre;
+    const Vec3d a = to_double(mesh.positions[size_t(t[0])]) - centre, b = to_double(mesh.positions[size_t(t[1])]) - centre,
+             cc = to_double(mesh.positions[size_t(t[2])]) - centre;
     components[size_t(k)].volume += dot(a, cross(b, cc)) / 6;
   }
   for (const SolidComponent& k : components) report.volume += k.volume;
@@ -360,9 +354,9 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1024), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t j = r.begin(); j < r.end(); ++j) {
         const std::array<int32_t, 3>& t = tris.corners[first + j];
-        const P3 corner[3] = {to_p3(mesh.positions[size_t(t[0])]), to_p3(mesh.positions[size_t(t[1])]),
-                              to_p3(mesh.positions[size_t(t[2])])};
-        P3 n = cross(corner[1] - corner[0], corner[2] - corner[0]);
+        const Vec3d corner[3] = {to_double(mesh.positions[size_t(t[0])]), to_double(mesh.positions[size_t(t[1])]),
+                              to_double(mesh.positions[size_t(t[2])])};
+        Vec3d n = cross(corner[1] - corner[0], corner[2] - corner[0]);
         const double length = std::sqrt(dot(n, n));
         flat[j] = length == 0;
         if (flat[j]) continue;
@@ -370,7 +364,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
         // Weighted by the corner angle, so that the normal does not depend on how the
         // faces around the vertex are triangulated (a cube's corner gets its diagonal).
         for (int k = 0; k < 3; ++k) {
-          const P3 e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
+          const Vec3d e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
           const double angle = std::atan2(std::sqrt(dot(cross(e1, e2), cross(e1, e2))), dot(e1, e2));
           weighted[j][size_t(k)] = Vec3{float(angle * n.x), float(angle * n.y), float(angle * n.z)};
         }
