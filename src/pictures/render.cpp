@@ -3,6 +3,7 @@
 #include "meander/error.h"
 #include "meander/io.h"
 #include "core/vec3d.h"
+#include "embree/embree_scene.h"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -12,7 +13,6 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <string>
 
 namespace meander {
@@ -52,15 +52,6 @@ float random01(uint32_t x, uint32_t y, uint32_t sample, uint32_t use) {
 // Geometry masks: primary rays see everything; occlusion rays skip occluder-only
 // meshes, which must leave no trace in the picture, not even a darker contact.
 constexpr unsigned drawn_mask = 1, curve_mask = 2, occluder_mask = 4;
-
-struct DeviceDeleter {
-  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
-};
-struct SceneDeleter {
-  void operator()(RTCScene s) const { rtcReleaseScene(s); }
-};
-using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
-using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 
 // What shading needs of each Embree geometry, indexed by its id.
 struct GeometryInfo {
@@ -213,7 +204,7 @@ double curve_length(const Polylines& c) {
   return length;
 }
 
-void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
+void add_mesh(EmbreeScene& rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
   GeometryInfo g{.albedo = linear(m.color), .style = m.style};
   const PolygonMesh& mesh = m.mesh;
   check_appearance(mesh, m.appearance, "render: scene mesh");
@@ -236,7 +227,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
     }
   }
   if (g.triangles.empty()) return;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry geometry = rtcNewGeometry(rtc.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.positions.size()));
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -248,9 +239,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
                                                                  3 * sizeof(uint32_t), g.triangles.size() / 3));
   std::copy(g.triangles.begin(), g.triangles.end(), indices);
   rtcSetGeometryMask(geometry, m.style == MeshStyle::shaded ? drawn_mask : occluder_mask);
-  rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(rtc, geometry);
-  rtcReleaseGeometry(geometry);
+  const unsigned id = rtc.attach(geometry);
   info.resize(std::max<size_t>(info.size(), id + 1));
   info[id] = std::move(g);
 }
@@ -258,7 +247,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
 // `radius` gives the curve's radius at each point: one value for tubes, growing with the
 // depth for ribbons of constant screen width (linear along a segment, as depth is).
 template <class Radius>
-void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle style, Radius radius,
+void add_curves(EmbreeScene& rtc, const SceneCurves& k, CurveStyle style, Radius radius,
                 std::vector<GeometryInfo>& info) {
   // A closed loop of n points is n segments: the first point is repeated at the end.
   // An open polyline of n points is n - 1 segments.
@@ -268,7 +257,7 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle
       points += k.curves.closed(i) ? n + 1 : n, segments += k.curves.closed(i) ? n : n - 1;
   if (segments == 0) return;
   RTCGeometry geometry = rtcNewGeometry(
-      device, style == CurveStyle::tube ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
+      rtc.device(), style == CurveStyle::tube ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
   auto* vertices = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
   auto* indices = static_cast<uint32_t*>(
@@ -286,9 +275,7 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle
     }
   }
   rtcSetGeometryMask(geometry, curve_mask);
-  rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(rtc, geometry);
-  rtcReleaseGeometry(geometry);
+  const unsigned id = rtc.attach(geometry);
   info.resize(std::max<size_t>(info.size(), id + 1));
   info[id] = GeometryInfo{.albedo = linear(k.color), .curve = true};
 }
@@ -459,34 +446,31 @@ Image render(const Scene& scene, const RenderOptions& o) {
                   : area > 0 && length > 0 ? std::max(std::min(0.25 * area / length / 2, 0.004 * diagonal), 0.75 * pixel_size)
                                            : pixel_size;
 
-  const DeviceHandle device(rtcNewDevice(nullptr));
-  if (!device) throw Error("render: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-  const SceneHandle rtc(rtcNewScene(device.get()));
-  // Without it, a ray through a shared edge can slip between two triangles and shade the
-  // inside of the far side: a dark speck on a closed surface.
-  rtcSetSceneFlags(rtc.get(), RTC_SCENE_FLAG_ROBUST);
+  // Robust: without it, a ray through a shared edge can slip between two triangles and
+  // shade the inside of the far side, a dark speck on a closed surface.
+  EmbreeScene rtc("render", RTC_SCENE_FLAG_ROBUST, RTC_BUILD_QUALITY_MEDIUM);
   std::vector<GeometryInfo> info;
-  for (const SceneMesh& m : scene.meshes) add_mesh(device.get(), rtc.get(), m, info);
+  for (const SceneMesh& m : scene.meshes) add_mesh(rtc, m, info);
   // A ribbon's radius grows with the depth so that it keeps the width it has at the
   // centre in pixels; the smallest depth keeps points behind the eye well-formed.
   const double centre_depth = std::max(dot(centre - camera.eye, camera.forward), 1e-9);
   const bool ribbons = o.curve_style == CurveStyle::ribbon;
   for (const SceneCurves& k : scene.curves) {
     if (ribbons)
-      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3 q) {
+      add_curves(rtc, k, o.curve_style, [&](Vec3 q) {
         return float(radius * std::max(dot(to_double(q) - camera.eye, camera.forward), 1e-6 * centre_depth) / centre_depth);
       }, info);
     else
-      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3) { return float(radius); }, info);
+      add_curves(rtc, k, o.curve_style, [&](Vec3) { return float(radius); }, info);
   }
-  rtcCommitScene(rtc.get());
+  rtc.commit();
   // Two tube widths, or four ribbon widths at the surface's depth (a ribbon turned to
   // face the eye dips further into a slanted surface than a tube does): enough for a
   // curve a little under the surface it covers (a B-spline cuts the corners of its
   // control polygon, and a tube's core is inside the surface), far too little for a
   // curve on the far side of a solid.
   const CurveSlack slack = ribbons ? CurveSlack{.relative = 8 * radius / centre_depth} : CurveSlack{.absolute = 4 * radius};
-  const Tracer tracer(rtc.get(), info, !scene.curves.empty(), slack, ribbons);
+  const Tracer tracer(rtc.scene(), info, !scene.curves.empty(), slack, ribbons);
 
   const Vec3d key = normalized(camera.forward * -0.75 + camera.up * 0.55 + camera.right * -0.35);
   const Vec3d background = linear(o.background.color);

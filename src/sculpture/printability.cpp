@@ -3,6 +3,7 @@
 #include "meander/check.h"
 #include "meander/error.h"
 #include "core/vec3d.h"
+#include "embree/embree_scene.h"
 #include "triangle_bvh.h"
 
 #include <embree3/rtcore.h>
@@ -16,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
 
 namespace meander {
 namespace {
@@ -323,13 +323,6 @@ void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-struct EmbreeDevice {
-  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
-};
-struct EmbreeScene {
-  void operator()(RTCScene s) const { rtcReleaseScene(s); }
-};
-
 // `inward` per face: -1 to cast against the normals (a component of positive volume),
 // +1 along them (one turned inside out), 0 to cast no ray from its vertices. Embree
 // finds the nearest triangle hit in float, in its robust mode, so that rays through
@@ -381,14 +374,10 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
     }
   }
 
-  const std::unique_ptr<RTCDeviceTy, EmbreeDevice> device(rtcNewDevice(nullptr));
-  if (!device) throw Error("printability: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-  const std::unique_ptr<RTCSceneTy, EmbreeScene> scene(rtcNewScene(device.get()));
   // A quick build and a compact tree: on millions of triangles building the tree (and
   // touching its fresh memory) costs more than the one ray per vertex it serves.
-  rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);
-  rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_LOW);
-  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  EmbreeScene scene("printability", RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT, RTC_BUILD_QUALITY_LOW);
+  RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), size_t(nv)));
   for (int32_t v = 0; v < nv; ++v) {
@@ -400,10 +389,8 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tris.corners.data(), 0,
                              sizeof(std::array<int32_t, 3>), tris.corners.size());
   rtcSetGeometryIntersectFilterFunction(geometry, skip_triangles_around_vertex);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene.get(), geometry);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene.get());
+  scene.attach(geometry);
+  scene.commit();
 
   // The rays in the order their vertices first appear among the triangles, so that
   // consecutive rays start near each other and walk the same parts of the tree
@@ -447,7 +434,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
           rh.ray.tfar = INFINITY;
           rh.ray.mask = 0xffffffffu;
           rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene.get(), &context.context, &rh);
+          rtcIntersect1(scene.scene(), &context.context, &rh);
           if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) best = std::min(best, Thinnest{double(rh.ray.tfar), v});
         }
         return best;
