@@ -17,10 +17,11 @@
 namespace meander {
 
 struct PrintabilityOptions {
-  // Search for self-intersections: a BVH over the triangles' boxes and a triangle-triangle
-  // test per overlapping pair made of orientation signs only, computed in double (exact
-  // for float inputs on a coarse lattice, such as axis-aligned and touching
-  // configurations; otherwise wrong only within ~1e-16 relative of a tie).
+  // Search for self-intersections: Embree's collision query (rtcCollide) over the
+  // triangles' boxes and a triangle-triangle test per overlapping pair made of
+  // orientation signs only, computed in double (exact for float inputs on a coarse
+  // lattice, such as axis-aligned and touching configurations; otherwise wrong only
+  // within ~1e-16 relative of a tie).
   bool self_intersections = true;
   // The caller has searched this very mesh with self_intersecting_faces() and found
   // nothing (VariableWire::clear): reported as checked and clear without a second search.

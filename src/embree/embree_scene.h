@@ -18,15 +18,14 @@ class EmbreeScene {
 public:
   // A scene on a device of its own; `user` names the caller if Embree cannot start.
   EmbreeScene(std::string_view user, RTCSceneFlags flags, RTCBuildQuality quality)
-      : device_(rtcNewDevice(nullptr)) {
-    if (!device_)
-      throw Error(std::string(user) + ": cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+      : user_(user), device_(rtcNewDevice(nullptr)) {
+    if (!device_) throw Error(user_ + ": cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
     make_scene(flags, quality);
   }
 
   // A scene on the device of `same_device`: rtcCollide takes two scenes of one device.
   EmbreeScene(const EmbreeScene& same_device, RTCSceneFlags flags, RTCBuildQuality quality)
-      : device_(same_device.device()) {
+      : user_(same_device.user_), device_(same_device.device()) {
     rtcRetainDevice(device());
     make_scene(flags, quality);
   }
@@ -44,7 +43,17 @@ public:
   }
 
   // Builds the scene's tree, after every geometry is attached.
-  void commit() { rtcCommitScene(scene()); }
+  void commit() {
+    rtcCommitScene(scene());
+    throw_if_failed();
+  }
+
+  // Throws Error if an Embree call on the device failed since the last check (a tree
+  // that could not be built, for want of memory, would otherwise find nothing).
+  void throw_if_failed() const {
+    if (const RTCError error = rtcGetDeviceError(device()); error != RTC_ERROR_NONE)
+      throw Error(user_ + ": Embree failed (error " + std::to_string(int(error)) + ")");
+  }
 
 private:
   void make_scene(RTCSceneFlags flags, RTCBuildQuality quality) {
@@ -59,7 +68,8 @@ private:
   struct SceneRelease {
     void operator()(RTCScene s) const { rtcReleaseScene(s); }
   };
-  std::unique_ptr<RTCDeviceTy, DeviceRelease> device_; // declared first, released last
+  std::string user_;
+  std::unique_ptr<RTCDeviceTy, DeviceRelease> device_; // declared before the scene, released after it
   std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
 };
 

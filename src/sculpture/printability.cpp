@@ -4,7 +4,6 @@
 #include "meander/error.h"
 #include "core/vec3d.h"
 #include "embree/embree_scene.h"
-#include "triangle_bvh.h"
 
 #include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
@@ -17,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 
 namespace meander {
 namespace {
@@ -240,17 +240,97 @@ std::vector<uint8_t> degenerate_triangles(const PolygonMesh& mesh, const Triangl
   return flags;
 }
 
+// A triangle's bounding box. Closed: boxes that touch overlap, so that touching
+// triangles are tested.
+struct Box {
+  float lo[3] = {INFINITY, INFINITY, INFINITY};
+  float hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  bool overlaps(const Box& b) const {
+    return lo[0] <= b.hi[0] && b.lo[0] <= hi[0] && lo[1] <= b.hi[1] && b.lo[1] <= hi[1] && lo[2] <= b.hi[2] &&
+           b.lo[2] <= hi[2];
+  }
+};
+
+// The boxes of the triangles `which` of `tris`.
+std::vector<Box> triangle_boxes(const PolygonMesh& mesh, const Triangles& tris, std::span<const int32_t> which) {
+  std::vector<Box> boxes(which.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k < r.end(); ++k)
+      for (const int32_t v : tris.corners[size_t(which[k])]) {
+        const Vec3 p = mesh.positions[size_t(v)];
+        const float c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) {
+          boxes[k].lo[a] = std::min(boxes[k].lo[a], c[a]);
+          boxes[k].hi[a] = std::max(boxes[k].hi[a], c[a]);
+        }
+      }
+  });
+  return boxes;
+}
+
+// Embree's collision query finds the candidate pairs: a scene holds one user geometry
+// whose primitives are boxes (rtcCollide takes nothing else), and `boxes` must outlive
+// the scene's commit, which reads them.
+void add_boxes(EmbreeScene& scene, const std::vector<Box>& boxes) {
+  RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, unsigned(boxes.size()));
+  rtcSetGeometryUserData(geometry, const_cast<Box*>(boxes.data()));
+  rtcSetGeometryBoundsFunction(
+      geometry,
+      [](const RTCBoundsFunctionArguments* args) {
+        // Embree leaves out boxes beyond about 1.8e18; clamping keeps every overlap.
+        const auto clamp = [](float x) { return std::clamp(x, -1e18f, 1e18f); };
+        const Box& b = static_cast<const Box*>(args->geometryUserPtr)[args->primID];
+        *args->bounds_o = {clamp(b.lo[0]), clamp(b.lo[1]), clamp(b.lo[2]), 0, clamp(b.hi[0]), clamp(b.hi[1]), clamp(b.hi[2]), 0};
+      },
+      nullptr);
+  scene.attach(geometry);
+  scene.commit();
+}
+
+// Calls f(i, j) for every box i of `a` and j of `b` that overlap, from several threads at
+// once and in no particular order. Embree pairs whole leaves of its two trees, so the
+// boxes are compared here. With a and b the same scene each unordered pair comes once,
+// as i < j (Embree meets it in both orders).
+template <class F>
+void for_each_overlapping(const EmbreeScene& a, const std::vector<Box>& boxes_a, const EmbreeScene& b,
+                          const std::vector<Box>& boxes_b, F&& f) {
+  const bool self = &a == &b;
+  auto candidate = [&](unsigned i, unsigned j) {
+    if ((!self || i < j) && boxes_a[i].overlaps(boxes_b[j])) f(int32_t(i), int32_t(j));
+  };
+  using Candidate = decltype(candidate);
+  rtcCollide(
+      a.scene(), b.scene(),
+      [](void* user, RTCCollision* pairs, unsigned count) {
+        for (unsigned k = 0; k < count; ++k) (*static_cast<Candidate*>(user))(pairs[k].primID0, pairs[k].primID1);
+      },
+      &candidate);
+  a.throw_if_failed();
+}
+
+// Calls f(i, j), i < j, for every pair of triangles whose boxes overlap, as for_each_overlapping.
+template <class F>
+void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F&& f) {
+  if (tris.corners.empty()) return;
+  std::vector<int32_t> all(tris.corners.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<Box> boxes = triangle_boxes(mesh, tris, all);
+  EmbreeScene scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+  add_boxes(scene, boxes);
+  for_each_overlapping(scene, boxes, scene, boxes, f);
+}
+
 // The first intersecting pair in the order of PrintabilityReport::first_intersection:
 // the least (i, j), i < j, in lexicographic order. Pairs are met in parallel in any
 // order; each one not below the best found so far is dismissed untested, and the best
 // only ever decreases, so the answer is that least pair whatever the timing.
 std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Triangles& tris,
-                                               const std::vector<uint8_t>& skip, const TriangleBvh& bvh) {
+                                               const std::vector<uint8_t>& skip) {
   const auto key = [](int32_t i, int32_t j) { return uint64_t(uint32_t(i)) << 32 | uint32_t(j); };
   constexpr uint64_t none = std::numeric_limits<uint64_t>::max();
   std::atomic<uint64_t> best{none};
-  bvh.for_each_overlapping_pair([&](int32_t a, int32_t b) {
-    const int32_t i = std::min(a, b), j = std::max(a, b);
+  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
     const uint64_t k = key(i, j);
     if (k >= best.load(std::memory_order_relaxed) || skip[size_t(i)] || skip[size_t(j)] ||
         tris.face[size_t(i)] == tris.face[size_t(j)] || !intersect(mesh, tris, i, j))
@@ -266,8 +346,8 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
 
 // Marks in `hit` both triangles of every intersecting pair.
 void mark_intersecting(const PolygonMesh& mesh, const Triangles& tris, const std::vector<uint8_t>& skip,
-                       const TriangleBvh& bvh, std::vector<uint8_t>& hit) {
-  bvh.for_each_overlapping_pair([&](int32_t i, int32_t j) {
+                       std::vector<uint8_t>& hit) {
+  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
     if (skip[size_t(i)] || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)]) return;
     // Threads share the flags; any of them writes only 1, so relaxed order is enough.
     std::atomic_ref<uint8_t> hit_i(hit[size_t(i)]), hit_j(hit[size_t(j)]);
@@ -493,8 +573,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     report.self_intersections_checked = true;
   } else if (options.self_intersections) {
     report.self_intersections_checked = true;
-    const TriangleBvh bvh(mesh.positions, tris.corners);
-    report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh);
+    report.first_intersection = first_intersecting_pair(mesh, tris, skip);
     report.self_intersecting = report.first_intersection[0] >= 0;
   }
   if (options.thickness && report.boundary_edges == 0 && !report.components.empty()) {
@@ -512,32 +591,30 @@ std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<
   const std::vector<uint8_t> skip = degenerate_triangles(mesh, tris);
   std::vector<uint8_t> hit(tris.corners.size());
   if (among.empty()) {
-    mark_intersecting(mesh, tris, skip, TriangleBvh(mesh.positions, tris.corners), hit);
+    mark_intersecting(mesh, tris, skip, hit);
   } else {
-    // A tree over the chosen faces' triangles only, and every triangle's box looked up
-    // in it: a pair of two chosen triangles is tested from the lower one.
-    std::vector<int32_t> chosen;
-    std::vector<std::array<int32_t, 3>> corners;
+    // The chosen faces' triangles against all: a pair of two chosen triangles is tested
+    // from the lower one.
+    std::vector<int32_t> chosen, tested;
     for (size_t i = 0; i < tris.corners.size(); ++i)
-      if (among[size_t(tris.face[i])] && !skip[i]) {
-        chosen.push_back(int32_t(i));
-        corners.push_back(tris.corners[i]);
+      if (!skip[i]) {
+        tested.push_back(int32_t(i));
+        if (among[size_t(tris.face[i])]) chosen.push_back(int32_t(i));
       }
-    const TriangleBvh bvh(mesh.positions, corners);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.corners.size(), 1 << 12), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i < r.end(); ++i) {
-        if (skip[i]) continue;
-        TriangleBvh::Box box;
-        for (const int32_t v : tris.corners[i]) box.extend(mesh.positions[size_t(v)]);
-        const bool i_chosen = among[size_t(tris.face[i])];
-        bvh.for_each_overlapping(box, [&](int32_t k) {
-          const size_t j = size_t(chosen[size_t(k)]);
-          if ((i_chosen && j <= i) || tris.face[i] == tris.face[j] || !intersect(mesh, tris, int32_t(i), int32_t(j))) return;
-          std::atomic_ref<uint8_t>(hit[i]).store(1, std::memory_order_relaxed);
-          std::atomic_ref<uint8_t>(hit[j]).store(1, std::memory_order_relaxed);
-        });
-      }
-    });
+    if (!chosen.empty()) {
+      const std::vector<Box> tested_boxes = triangle_boxes(mesh, tris, tested), chosen_boxes = triangle_boxes(mesh, tris, chosen);
+      EmbreeScene tested_scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+      EmbreeScene chosen_scene(tested_scene, RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+      add_boxes(tested_scene, tested_boxes);
+      add_boxes(chosen_scene, chosen_boxes);
+      for_each_overlapping(tested_scene, tested_boxes, chosen_scene, chosen_boxes, [&](int32_t a, int32_t k) {
+        const size_t i = size_t(tested[size_t(a)]), j = size_t(chosen[size_t(k)]);
+        if ((among[size_t(tris.face[i])] && j <= i) || tris.face[i] == tris.face[j] || !intersect(mesh, tris, int32_t(i), int32_t(j)))
+          return;
+        std::atomic_ref<uint8_t>(hit[i]).store(1, std::memory_order_relaxed);
+        std::atomic_ref<uint8_t>(hit[j]).store(1, std::memory_order_relaxed);
+      });
+    }
   }
   std::vector<int32_t> faces;
   for (size_t i = 0; i < hit.size(); ++i)
