@@ -10,7 +10,7 @@ namespace meander {
 
 // std::allocator, except that an element made without a value (resize(n)) is left
 // uninitialised, for the large arrays that are written whole right after they are sized:
-// zeroing one first is a serial pass over it (240 MB for the quads of 10M triangles).
+// zeroing one first is a serial pass over it (docs/curve.md, "Large meshes").
 template <typename T>
 struct DefaultInitAllocator : std::allocator<T> {
   template <typename U>

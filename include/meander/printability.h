@@ -98,9 +98,8 @@ struct PrintabilityReport {
 // Checks the mesh. Throws InputError if a face index is out of range or a vertex used by
 // a face has a non-finite position (readers never return such meshes). Deterministic
 // whatever the number of threads. O(n log n) time and O(n) memory for n triangles of
-// bounded overlap; the pair search and the rays run in parallel (oneTBB, Embree). About
-// 1.5 s per million triangles on two cores, most of it in touching fresh memory
-// (docs/benchmarks.md).
+// bounded overlap; the pair search and the rays run in parallel (oneTBB, Embree); its
+// time is mostly in touching fresh memory (docs/wires.md, "Printability report").
 PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options = {});
 
 // Every face that meets another where the mesh does not join them (the

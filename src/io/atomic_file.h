@@ -7,30 +7,28 @@
 // The file's blocks are reserved ahead of the writes (fallocate, in steps that double up
 // to 64 MiB, or at once to the size expect_size gives) and the file cut back to what was
 // written when it closes: with delayed allocation each buffered write reserves its
-// blocks page by page and writeback then allocates them, which made writing a 2.2 GiB
-// curve here take 1.5-4.9 s against 0.4-0.5 s preallocated (docs/benchmarks.md). Where
-// the file system cannot reserve (or is full), the writes go on without.
+// blocks page by page and writeback then allocates them, several times slower for a
+// curve of gigabytes (docs/robustness.md, "Atomic outputs"). Where the file system
+// cannot reserve (or is full), the writes go on without.
 //
 // A large file is also written behind: every 16 MiB of consecutive bytes are sent to the
 // disk at once, and once 128 MiB more have followed they are dropped from the page cache,
 // as far as they have reached the disk by then (what has not stays cached, as any
 // write's bytes would). This is what Linux 6.14's RWF_DONTCACHE does, by hand so that any
-// kernel has it. A curve of 2.4 GB otherwise takes 2.4 GB of page cache that the kernel
-// must find free pages for: on this VM, whose host takes back the memory the guest frees,
-// such pages cost 2.5-3.5 s/GiB, and the write took 5.7-10 s against 1.2-1.7 s written
-// behind (docs/benchmarks.md). The page cache of the written bytes is then reused over
-// and over.
+// kernel has it. A large curve otherwise takes as much page cache as it has bytes, which
+// the kernel must find free pages for, dearly on a VM whose host takes back the memory
+// the guest frees (docs/robustness.md, "Atomic outputs"). The page cache of the written
+// bytes is then reused over and over.
 //
 // A large region whose bytes the caller can make in any order of pieces (fill(): a
 // curve's points and edges) skips the page cache altogether: its whole pages are made in
 // place in a few page-aligned buffers and written with O_DIRECT by a thread of the file's
 // own while the caller makes the next ones; only the partial pages at its ends go through
-// the page cache. Writing the 10M-triangle curve's 0.96 GB of edges during the spanning
-// forest made the forest 0.2 s slower through the page cache: the copy into it, finding
-// it free pages and writing them back; direct, its system time went 0.7-0.9 -> 0.3 s
-// (docs/benchmarks.md). The caller waits for a free buffer, so a disk slower than the
-// caller sets the pace, as it would through the page cache; where the file system refuses
-// O_DIRECT everything goes through the page cache.
+// the page cache. Written through the page cache during the spanning forest, a curve's
+// edges slow the forest down (the copy into it, finding it free pages and writing them
+// back; docs/robustness.md, "Atomic outputs"). The caller waits for a free buffer, so a
+// disk slower than the caller sets the pace, as it would through the page cache; where
+// the file system refuses O_DIRECT everything goes through the page cache.
 #pragma once
 
 #include "io/binary.h"
@@ -72,10 +70,9 @@ public:
   }
 
   // The file will be `size` bytes long: its blocks are reserved at once, and never past
-  // that, so that closing it cuts nothing back. On this VM's ext4 (mounted with
-  // `discard`) cutting back the last step's unused blocks waited for the journal, behind
-  // the discards of a file just deleted: 0.9 s at the end of a 2.4 GB curve written right
-  // after the previous one (docs/benchmarks.md).
+  // that, so that closing it cuts nothing back: on an ext4 mounted with `discard`,
+  // cutting back the last step's unused blocks waits for the journal, behind the discards
+  // of a file just deleted (docs/robustness.md, "Atomic outputs").
   void expect_size(uint64_t size);
 
   // Writes `size` bytes from the current position: make(offset, n, dst) puts the n bytes
