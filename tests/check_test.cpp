@@ -126,7 +126,7 @@ double total_area(const PolygonMesh& m) {
   return area;
 }
 
-// The area of the faces with distinct vertex sets, found independently of check.cpp.
+// The area of the faces with distinct vertex sets, found independently of inspect.cpp.
 double area_without_duplicates(const PolygonMesh& m) {
   std::set<std::vector<int32_t>> seen;
   double area = 0;

@@ -10,12 +10,36 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <zip.h>
 
 #include <cstring>
 #include <fstream>
+#include <map>
 
 namespace meander {
 namespace {
+
+// The files of a zip archive by name, read back by libzip with its consistency checks;
+// empty if it does not open.
+std::map<std::string, std::string> unzip(const std::string& archive) {
+  std::map<std::string, std::string> files;
+  zip_source_t* source = zip_source_buffer_create(archive.data(), archive.size(), 0, nullptr);
+  zip_t* zip = source ? zip_open_from_source(source, ZIP_CHECKCONS | ZIP_RDONLY, nullptr) : nullptr;
+  if (!zip) {
+    if (source) zip_source_free(source);
+    return files;
+  }
+  for (zip_int64_t i = 0; i < zip_get_num_entries(zip, 0); ++i) {
+    zip_stat_t stat;
+    zip_file_t* file = zip_stat_index(zip, zip_uint64_t(i), 0, &stat) == 0 ? zip_fopen_index(zip, zip_uint64_t(i), 0) : nullptr;
+    if (!file) continue;
+    std::string bytes(stat.size, '\0');
+    if (zip_fread(file, bytes.data(), bytes.size()) == zip_int64_t(bytes.size())) files[stat.name] = bytes;
+    zip_fclose(file);
+  }
+  zip_close(zip);
+  return files;
+}
 
 std::string message_of(std::string_view body) {
   try {
@@ -393,6 +417,12 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
   EXPECT_EQ(zip.bytes.substr(0, 4), std::string("PK\3\4", 4));
   EXPECT_NE(zip.bytes.find("pretzel_variable-wire.mtl"), std::string::npos);
   EXPECT_NE(zip.bytes.find("mtllib pretzel_variable-wire.mtl"), std::string::npos); // stored, so readable
+  // A zip reader finds the OBJ and its MTL, and the same files give the same archive.
+  const std::map<std::string, std::string> files = unzip(zip.bytes);
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_NE(files.at("pretzel_variable-wire.obj").find("mtllib pretzel_variable-wire.mtl"), std::string::npos);
+  EXPECT_TRUE(files.contains("pretzel_variable-wire.mtl"));
+  EXPECT_EQ(studio_download(surface, wire, StudioFile::obj_zip, scratch, "b2").bytes, zip.bytes);
   // The render as `meander wire --png` draws it: 1200 x 900, the copper wire covering a good part of it.
   const Texture picture = read_texture(studio_download(surface, wire, StudioFile::png).bytes, "render.png");
   EXPECT_EQ(picture.width, 1200);

@@ -21,9 +21,9 @@ namespace meander {
 // 1 on a boundary edge, 2 on a manifold interior edge, more on a non-manifold edge.
 // Edges are numbered by increasing (lo, hi). face_of(h) is the face of halfedge h: found
 // by division when every face has `face_size` corners (a triangle or a quad mesh), from
-// halfedge_face otherwise (face_size 0), since an array as long as the corners is
-// 114 MB on 10M triangles, and every large array costs this project's machines more to
-// take fresh than to fill.
+// halfedge_face otherwise (face_size 0), since an array as long as the corners is among
+// the largest the pipeline holds, and a large array costs more to take fresh than to
+// fill (docs/curve.md, "Large meshes").
 // The arrays are not zeroed when sized (default_init.h): each is written whole right after.
 struct Connectivity {
   UninitVector<int32_t> halfedge_edge;

@@ -13,9 +13,10 @@ namespace meander {
 
 // write_polylines(cycle_curves(quads, cycle, options), path), byte for byte, without the
 // curves in memory: each block of points is sampled as the writer reaches it (on all
-// cores for PLY), so only a few blocks exist at once instead of 12 bytes a point (1.44 GB
-// for a 10M-triangle mesh at 4 samples). Returns the number of points written. Throws
-// what cycle_curves and write_polylines throw, a bad samples before the file is made.
+// cores for PLY), so only a few blocks exist at once instead of 12 bytes a point for the
+// whole curve (docs/curve.md, "Large meshes"). Returns the number of points
+// written. Throws what cycle_curves and write_polylines throw, a bad samples before the
+// file is made.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
                            const std::filesystem::path& path);
 

@@ -24,7 +24,7 @@ void advise_huge_pages(void* block, size_t bytes) noexcept;
 
 // std::allocator, except that an element made without a value (resize(n)) is left
 // uninitialised, for the large arrays that are written whole right after they are sized:
-// zeroing one first is a serial pass over it (240 MB for the quads of 10M triangles).
+// zeroing one first is a serial pass over it (docs/curve.md, "Large meshes").
 // Blocks of kHugePageBlock bytes or more come from the aligned operator new and are
 // advised onto huge pages; deallocate tells them apart by the same size.
 template <typename T>

@@ -2,10 +2,9 @@
 //
 // Every stage after reading follows the mesh's adjacency, so its speed depends on how
 // far apart in memory neighbouring elements lie. Meshes from most tools keep neighbours
-// near each other, but not all: on the 10M-triangle sphere with its vertices and faces
-// shuffled, `meander curve` took 11.6 s against 2.7 s in the generator's order
-// (docs/benchmarks.md). A mesh found scattered is put in an order where vertices and faces
-// follow a space-filling curve.
+// near each other, but not all, and a scattered one makes every stage several times
+// slower (docs/curve.md, "Large meshes"). A mesh found scattered is put in an
+// order where vertices and faces follow a space-filling curve.
 #pragma once
 
 #include "meander/mesh.h"

@@ -17,10 +17,11 @@
 namespace meander {
 
 struct PrintabilityOptions {
-  // Search for self-intersections: a BVH over the triangles' boxes and a triangle-triangle
-  // test per overlapping pair made of orientation signs only, computed in double (exact
-  // for float inputs on a coarse lattice, such as axis-aligned and touching
-  // configurations; otherwise wrong only within ~1e-16 relative of a tie).
+  // Search for self-intersections: Embree's collision query (rtcCollide) over the
+  // triangles' boxes and a triangle-triangle test per overlapping pair made of
+  // orientation signs only, computed in double (exact for float inputs on a coarse
+  // lattice, such as axis-aligned and touching configurations; otherwise wrong only
+  // within ~1e-16 relative of a tie).
   bool self_intersections = true;
   // The caller has searched this very mesh with self_intersecting_faces() and found
   // nothing (VariableWire::clear): reported as checked and clear without a second search.
@@ -97,8 +98,8 @@ struct PrintabilityReport {
 // Checks the mesh. Throws InputError if a face index is out of range or a vertex used by
 // a face has a non-finite position (readers never return such meshes). Deterministic
 // whatever the number of threads. O(n log n) time and O(n) memory for n triangles of
-// bounded overlap; the pair search and the rays run in parallel (oneTBB, Embree). About
-// 1.5 s per million triangles on two cores, most of it in touching fresh memory.
+// bounded overlap; the pair search and the rays run in parallel (oneTBB, Embree); its
+// time is mostly in touching fresh memory (docs/wires.md, "Printability report").
 PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options = {});
 
 // Every face that meets another where the mesh does not join them (the

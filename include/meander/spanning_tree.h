@@ -37,8 +37,8 @@ struct Graph {
 // mesh holds them: edge i joins rows[i * stride + first] - bias and rows[i * stride +
 // second] - bias, and is absent, like a self loop, when either value is negative. A
 // Hamiltonian cycle reads its graph from the quads this way instead of copying the ends
-// out: the copy was 114 MiB on a 10M-triangle mesh, held in the forest's first round,
-// which was the run's peak. `rank` is as Graph::rank.
+// out: the copy, held in the forest's first round, was the run's peak of memory
+// (docs/curve.md, "Large meshes"). `rank` is as Graph::rank.
 struct EdgeTable {
   int32_t num_nodes = 0;
   int32_t num_edges = 0;

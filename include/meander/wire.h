@@ -115,8 +115,8 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
 
 // The triangles constant_wire and variable_wire make from a cycle of `cycle_triangles`
 // triangles (TriangleCycle::num_triangles), known before they are made: what a caller
-// weighs against its memory (docs/wires.md: a wire takes 110 to 234 bytes per
-// triangle while it is made and checked). constant_wire and variable_wire refuse
+// weighs against its memory (docs/wires.md, "How large a wire gets", says how much a
+// triangle takes while it is made and checked). constant_wire and variable_wire refuse
 // (UsageError) more than 2^31 - 1, which a mesh cannot index, before making anything.
 int64_t constant_wire_triangles(int64_t cycle_triangles, const ConstantWireOptions& options);
 int64_t variable_wire_triangles(int64_t cycle_triangles, const VariableWireOptions& options);

@@ -1,5 +1,6 @@
 // Disjoint sets over int32 handles: path halving and union by size, so a sequence of
-// operations costs near-linear time. Internal to the library.
+// operations costs near-linear time; and a variant whose elements carry a parity.
+// Internal to the library.
 #pragma once
 
 #include <atomic>
@@ -71,6 +72,45 @@ private:
   // parent_[x] is x's parent, or minus the size of x's set when x is a root (some
   // negative number after unite_concurrently).
   std::vector<int32_t> parent_;
+};
+
+// Union-find whose elements carry a parity relative to their root (path halving, union
+// by size, as UnionFind): for find_sheets (mesh_scan.h), whether a face is wound against
+// the root of its sheet.
+class ParityUnionFind {
+public:
+  explicit ParityUnionFind(int32_t n) : parent_(size_t(n), -1), parity_(size_t(n), 0) {}
+
+  // The root of x, and x's parity relative to it.
+  std::pair<int32_t, uint8_t> find(int32_t x) {
+    uint8_t parity = 0;
+    for (int32_t p; (p = parent_[size_t(x)]) >= 0;) {
+      const int32_t grandparent = parent_[size_t(p)];
+      if (grandparent < 0) return {p, uint8_t(parity ^ parity_[size_t(x)])};
+      parity_[size_t(x)] ^= parity_[size_t(p)]; // x hangs from its grandparent now
+      parent_[size_t(x)] = grandparent;
+      parity ^= parity_[size_t(x)];
+      x = grandparent;
+    }
+    return {x, parity};
+  }
+
+  // Records that a and b differ in parity iff `odd`; false if that contradicts what was
+  // recorded before.
+  bool unite(int32_t a, int32_t b, uint8_t odd) {
+    auto [ra, pa] = find(a);
+    auto [rb, pb] = find(b);
+    if (ra == rb) return (pa ^ pb) == odd;
+    if (parent_[size_t(ra)] > parent_[size_t(rb)]) std::swap(ra, rb); // ra's set is the larger
+    parent_[size_t(ra)] += parent_[size_t(rb)];
+    parent_[size_t(rb)] = ra;
+    parity_[size_t(rb)] = pa ^ pb ^ odd;
+    return true;
+  }
+
+private:
+  std::vector<int32_t> parent_; // as in UnionFind: minus the set's size at a root
+  std::vector<uint8_t> parity_; // relative to the parent
 };
 
 } // namespace meander

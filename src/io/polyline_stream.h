@@ -1,6 +1,6 @@
 // Polylines whose points are made when a writer asks for them, a block at a time, so that
-// curves too large to hold (120M points, 1.44 GB, for a 10M-triangle mesh at the default
-// 4 samples) are written without ever existing whole: write_cycle_curves in curve.h.
+// curves too large to hold (docs/curve.md, "Large meshes") are written without
+// ever existing whole: write_cycle_curves in curve.h.
 #pragma once
 
 #include "io/sink.h"

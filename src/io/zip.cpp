@@ -2,83 +2,68 @@
 
 #include "meander/error.h"
 
-#include <array>
-#include <cstdint>
+#include <zip.h>
+
+#include <memory>
 
 namespace meander::io {
 
 namespace {
 
-uint32_t crc32(const std::string& bytes) {
-  static const std::array<uint32_t, 256> table = [] {
-    std::array<uint32_t, 256> t{};
-    for (uint32_t n = 0; n < 256; ++n) {
-      uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  uint32_t c = 0xFFFFFFFFu;
-  for (unsigned char b : bytes) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
-}
+struct SourceFree {
+  void operator()(zip_source_t* source) const { zip_source_free(source); }
+};
+struct ArchiveDiscard {
+  void operator()(zip_t* archive) const { zip_discard(archive); }
+};
 
-void put16(std::string& out, uint32_t v) {
-  out.push_back(char(v & 0xFF));
-  out.push_back(char((v >> 8) & 0xFF));
-}
-void put32(std::string& out, uint32_t v) {
-  put16(out, v & 0xFFFF);
-  put16(out, v >> 16);
+[[noreturn]] void fail(const std::string& what, zip_error_t* error) {
+  throw IOError("zip archive: " + what + ": " + zip_error_strerror(error));
 }
 
 } // namespace
 
 std::string zip_stored(std::span<const ZipEntry> entries) {
-  std::string out, directory;
-  for (const ZipEntry& e : entries) {
-    if (e.bytes.size() >= UINT32_MAX || out.size() >= UINT32_MAX)
-      throw UsageError(e.name + ": too large for a zip archive without Zip64 (4 GiB)");
-    const uint32_t crc = crc32(e.bytes), size = uint32_t(e.bytes.size()), offset = uint32_t(out.size());
-    // A fixed date (1980-01-01) keeps the archive the same bytes for the same files.
-    auto header = [&](std::string& to, bool central) {
-      put32(to, central ? 0x02014b50 : 0x04034b50);
-      if (central) put16(to, 20); // made by: version 2.0
-      put16(to, 20);              // needed to extract: 2.0
-      put16(to, 0x0800);          // names are UTF-8
-      put16(to, 0);               // stored
-      put16(to, 0);               // time
-      put16(to, 0x21);            // date
-      put32(to, crc);
-      put32(to, size);
-      put32(to, size);
-      put16(to, uint32_t(e.name.size()));
-      put16(to, 0); // extra
-      if (central) {
-        put16(to, 0); // comment
-        put16(to, 0); // disk
-        put16(to, 0); // internal attributes
-        put32(to, 0); // external attributes
-        put32(to, offset);
-      }
-      to += e.name;
-    };
-    header(out, false);
-    out += e.bytes;
-    header(directory, true);
+  struct ErrorScope {
+    zip_error_t error;
+    ErrorScope() { zip_error_init(&error); }
+    ~ErrorScope() { zip_error_fini(&error); }
+  } opening;
+  // The archive is written into this growing buffer, kept past zip_close to be read back.
+  std::unique_ptr<zip_source_t, SourceFree> buffer(zip_source_buffer_create(nullptr, 0, 0, &opening.error));
+  if (!buffer) fail("buffer", &opening.error);
+  zip_source_keep(buffer.get());
+  std::unique_ptr<zip_t, ArchiveDiscard> archive(zip_open_from_source(buffer.get(), ZIP_TRUNCATE, &opening.error));
+  if (!archive) {
+    zip_source_free(buffer.get()); // the reference zip_open_from_source did not take
+    fail("open", &opening.error);
   }
-  if (out.size() + directory.size() >= UINT32_MAX) throw UsageError("zip archive too large without Zip64 (4 GiB)");
-  const uint32_t directory_offset = uint32_t(out.size());
-  out += directory;
-  put32(out, 0x06054b50);
-  put16(out, 0);
-  put16(out, 0);
-  put16(out, uint32_t(entries.size()));
-  put16(out, uint32_t(entries.size()));
-  put32(out, uint32_t(directory.size()));
-  put32(out, directory_offset);
-  put16(out, 0);
+  for (const ZipEntry& e : entries) {
+    // Read at zip_close, while the entries are still alive.
+    zip_source_t* source = zip_source_buffer(archive.get(), e.bytes.data(), e.bytes.size(), 0);
+    const zip_int64_t index = source ? zip_file_add(archive.get(), e.name.c_str(), source, ZIP_FL_ENC_UTF_8) : -1;
+    if (index < 0) {
+      if (source) zip_source_free(source);
+      fail(e.name, zip_get_error(archive.get()));
+    }
+    // Stored, so the files read as they are; a fixed date (1980-01-01, as the DOS time and
+    // date fields, not through the local time zone) keeps the same bytes for the same files.
+    if (zip_set_file_compression(archive.get(), zip_uint64_t(index), ZIP_CM_STORE, 0) < 0 ||
+        zip_file_set_dostime(archive.get(), zip_uint64_t(index), 0, 0x21, 0) < 0)
+      fail(e.name, zip_get_error(archive.get()));
+  }
+  if (zip_close(archive.get()) < 0) fail("write", zip_get_error(archive.get()));
+  archive.release(); // zip_close freed it
+  // libzip writes nothing for an archive without entries; every reader takes this one.
+  if (zip_source_is_deleted(buffer.get())) return std::string("PK\5\6", 4) + std::string(18, '\0');
+
+  zip_stat_t stat;
+  if (zip_source_stat(buffer.get(), &stat) < 0 || zip_source_open(buffer.get()) < 0)
+    fail("read", zip_source_error(buffer.get()));
+  std::string out(stat.size, '\0');
+  const zip_int64_t read = zip_source_read(buffer.get(), out.data(), out.size());
+  zip_source_close(buffer.get());
+  if (read != zip_int64_t(out.size())) fail("read", zip_source_error(buffer.get()));
   return out;
 }
 

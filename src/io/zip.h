@@ -1,5 +1,5 @@
 // A zip archive in memory, its entries stored (not compressed): what the studio offers
-// for results that are several files (OBJ + MTL + PNG). Every zip reader opens it.
+// for results that are several files (OBJ + MTL + PNG). Written by libzip.
 #pragma once
 
 #include <span>
@@ -12,7 +12,8 @@ struct ZipEntry {
   std::string bytes;
 };
 
-// The archive. Throws UsageError if an entry or the whole exceeds 4 GiB (no Zip64).
+// The archive (Zip64 where an entry or the whole passes 4 GiB), the same bytes for the
+// same entries. Throws IOError if libzip fails.
 std::string zip_stored(std::span<const ZipEntry> entries);
 
 } // namespace meander::io

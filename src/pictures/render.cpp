@@ -2,6 +2,8 @@
 
 #include "meander/error.h"
 #include "meander/io.h"
+#include "core/vec3d.h"
+#include "embree/embree_scene.h"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -11,7 +13,6 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <string>
 
 namespace meander {
@@ -20,26 +21,17 @@ namespace {
 constexpr int32_t max_side = 16384;
 constexpr double pi = 3.14159265358979323846;
 
-struct V3 {
-  double x = 0, y = 0, z = 0;
-  V3() = default;
-  V3(double a, double b, double c) : x(a), y(b), z(c) {}
-  explicit V3(Vec3 p) : x(p.x), y(p.y), z(p.z) {}
-  friend V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-  friend V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-  friend V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-  friend V3 operator*(V3 a, V3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-};
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V3 normalized(V3 a) {
+// Positions, directions and linear colours in double (Vec3d).
+Vec3d normalized(Vec3d a) {
   const double n = std::sqrt(dot(a, a));
-  return n > 0 ? a * (1 / n) : V3{0, 0, 0};
+  return n > 0 ? a * (1 / n) : Vec3d{0, 0, 0};
 }
+// A colour filtered by another, channel by channel.
+Vec3d filtered(Vec3d a, Vec3d b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 
 // Shading is done in linear light; colours arrive and leave as sRGB (gamma 2.2 is close
 // enough for pictures, and cheaper than the exact curve).
-V3 linear(Rgb c) { return {std::pow(c.r, 2.2), std::pow(c.g, 2.2), std::pow(c.b, 2.2)}; }
+Vec3d linear(Rgb c) { return {std::pow(c.r, 2.2), std::pow(c.g, 2.2), std::pow(c.b, 2.2)}; }
 uint8_t to_byte(double linear_value) {
   const double v = std::pow(std::clamp(linear_value, 0.0, 1.0), 1 / 2.2);
   return uint8_t(std::lround(v * 255));
@@ -61,18 +53,9 @@ float random01(uint32_t x, uint32_t y, uint32_t sample, uint32_t use) {
 // meshes, which must leave no trace in the picture, not even a darker contact.
 constexpr unsigned drawn_mask = 1, curve_mask = 2, occluder_mask = 4;
 
-struct DeviceDeleter {
-  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
-};
-struct SceneDeleter {
-  void operator()(RTCScene s) const { rtcReleaseScene(s); }
-};
-using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
-using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
-
 // What shading needs of each Embree geometry, indexed by its id.
 struct GeometryInfo {
-  V3 albedo;
+  Vec3d albedo;
   bool curve = false;
   MeshStyle style = MeshStyle::shaded;
   std::vector<uint32_t> triangles; // 3 vertex ids per triangle
@@ -84,31 +67,31 @@ struct GeometryInfo {
 };
 
 // The colour of a mesh with materials at barycentric (u, v) of triangle t, in linear light.
-V3 surface_albedo(const GeometryInfo& g, unsigned t, double u, double v) {
+Vec3d surface_albedo(const GeometryInfo& g, unsigned t, double u, double v) {
   const Appearance& a = *g.appearance;
   const Material& m = a.materials[a.face_material.empty() ? 0 : size_t(a.face_material[size_t(g.faces[t])])];
-  V3 colour{m.base_color[0], m.base_color[1], m.base_color[2]};
+  Vec3d colour{m.base_color[0], m.base_color[1], m.base_color[2]};
   if (m.texture.empty()) return colour;
   const int32_t* c = &g.corners[3 * size_t(t)];
   const TexCoord t0 = a.texcoords[size_t(c[0])], t1 = a.texcoords[size_t(c[1])], t2 = a.texcoords[size_t(c[2])];
   const TexCoord uv{float(t0.u * (1 - u - v) + t1.u * u + t2.u * v), float(t0.v * (1 - u - v) + t1.v * u + t2.v * v)};
   const LinearRgb texel = sample_texture(m.texture, uv);
-  return colour * V3{texel[0], texel[1], texel[2]};
+  return filtered(colour, Vec3d{texel[0], texel[1], texel[2]});
 }
 
 struct Camera {
-  V3 eye, forward, right, up;
+  Vec3d eye, forward, right, up;
   double tan_half_height = 0, aspect = 1;
 };
 
 Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   const double az = o.view.azimuth * pi / 180, el = std::clamp(o.view.elevation, -89.9, 89.9) * pi / 180;
   Camera c;
-  const V3 from{std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
+  const Vec3d from{std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
   c.forward = from * -1;
   // Looking straight down, the world's up is along the view: then "up" on the picture
   // is the direction the azimuth faces away from.
-  const V3 world_up = std::abs(o.view.elevation) > 89.9 ? V3{-std::sin(az), 0, -std::cos(az)} : V3{0, 1, 0};
+  const Vec3d world_up = std::abs(o.view.elevation) > 89.9 ? Vec3d{-std::sin(az), 0, -std::cos(az)} : Vec3d{0, 1, 0};
   c.right = normalized(cross(c.forward, world_up));
   c.up = cross(c.right, c.forward);
   c.aspect = double(o.width) / o.height;
@@ -117,13 +100,13 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   Box3 box;
   auto each_point = [&](auto&& f) {
     for (const SceneMesh& m : scene.meshes)
-      for (Vec3 p : m.mesh.positions) f(V3(p));
+      for (Vec3 p : m.mesh.positions) f(to_double(p));
     for (const SceneCurves& k : scene.curves)
-      for (Vec3 p : k.curves.points) f(V3(p));
+      for (Vec3 p : k.curves.points) f(to_double(p));
   };
-  each_point([&](V3 p) { box.extend({float(p.x), float(p.y), float(p.z)}); });
+  each_point([&](Vec3d p) { box.extend({float(p.x), float(p.y), float(p.z)}); });
   if (box.empty()) box.extend({0, 0, 0});
-  const V3 centre = (V3(box.min) + V3(box.max)) * 0.5;
+  const Vec3d centre = (to_double(box.min) + to_double(box.max)) * 0.5;
   if (o.framing == Framing::sphere) {
     // The sphere's outline is a circle of half-angle asin(R / distance) around the view
     // axis: it fits the narrower side of the picture with a 6% margin.
@@ -141,8 +124,8 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
     // pair of planes equally clear of the points on both sides.
     const double tan_y = c.tan_half_height * 0.94, tan_x = tan_y * c.aspect;
     double right_min = INFINITY, left_min = INFINITY, top_min = INFINITY, bottom_min = INFINITY;
-    each_point([&](V3 p) {
-      const V3 d = p - centre;
+    each_point([&](Vec3d p) {
+      const Vec3d d = p - centre;
       const double x = dot(d, c.right), y = dot(d, c.up), z = dot(d, c.forward);
       right_min = std::min(right_min, z * tan_x - x), left_min = std::min(left_min, z * tan_x + x);
       top_min = std::min(top_min, z * tan_y - y), bottom_min = std::min(bottom_min, z * tan_y + y);
@@ -151,7 +134,7 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
     c.eye = centre + c.right * ((left_min - right_min) / 2) + c.up * ((bottom_min - top_min) / 2) + c.forward * along;
     // A single point (or points along the view axis) would put the eye on them.
     double farthest = 0;
-    each_point([&](V3 p) { farthest = std::max(farthest, dot(p - c.eye, c.forward)); });
+    each_point([&](Vec3d p) { farthest = std::max(farthest, dot(p - c.eye, c.forward)); });
     if (farthest <= 1e-9 * std::max(box.diagonal(), 1.0)) c.eye = c.eye - c.forward;
     // The pair of planes that do not touch are equally clear of the points, but their
     // extreme points lie at different depths, so the picture is not quite centred between
@@ -161,8 +144,8 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
       struct Extreme {
         double lo = INFINITY, hi = -INFINITY, lo_depth = 1, hi_depth = 1, lo_at = 0, hi_at = 0;
       } across, upward;
-      each_point([&](V3 p) {
-        const V3 d = p - c.eye;
+      each_point([&](Vec3d p) {
+        const Vec3d d = p - c.eye;
         const double depth = dot(d, c.forward);
         if (depth <= 0) return;
         for (auto [extreme, axis] : {std::pair{&across, c.right}, std::pair{&upward, c.up}}) {
@@ -183,16 +166,16 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   // Centre on the extent of the points across the view, then back off until every
   // point is inside the frame with a 6% margin on each side.
   double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
-  each_point([&](V3 p) {
-    const V3 d = p - centre;
+  each_point([&](Vec3d p) {
+    const Vec3d d = p - centre;
     lo_x = std::min(lo_x, dot(d, c.right)), hi_x = std::max(hi_x, dot(d, c.right));
     lo_y = std::min(lo_y, dot(d, c.up)), hi_y = std::max(hi_y, dot(d, c.up));
   });
-  const V3 target = centre + c.right * ((lo_x + hi_x) / 2) + c.up * ((lo_y + hi_y) / 2);
+  const Vec3d target = centre + c.right * ((lo_x + hi_x) / 2) + c.up * ((lo_y + hi_y) / 2);
   const double tan_y = c.tan_half_height * 0.88, tan_x = tan_y * c.aspect;
   double distance = 0;
-  each_point([&](V3 p) {
-    const V3 d = p - target;
+  each_point([&](Vec3d p) {
+    const Vec3d d = p - target;
     const double depth = dot(d, c.forward);
     distance = std::max({distance, std::abs(dot(d, c.right)) / tan_x - depth, std::abs(dot(d, c.up)) / tan_y - depth});
   });
@@ -221,7 +204,7 @@ double curve_length(const Polylines& c) {
   return length;
 }
 
-void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
+void add_mesh(EmbreeScene& rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
   GeometryInfo g{.albedo = linear(m.color), .style = m.style};
   const PolygonMesh& mesh = m.mesh;
   check_appearance(mesh, m.appearance, "render: scene mesh");
@@ -244,7 +227,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
     }
   }
   if (g.triangles.empty()) return;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry geometry = rtcNewGeometry(rtc.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.positions.size()));
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -256,9 +239,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
                                                                  3 * sizeof(uint32_t), g.triangles.size() / 3));
   std::copy(g.triangles.begin(), g.triangles.end(), indices);
   rtcSetGeometryMask(geometry, m.style == MeshStyle::shaded ? drawn_mask : occluder_mask);
-  rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(rtc, geometry);
-  rtcReleaseGeometry(geometry);
+  const unsigned id = rtc.attach(geometry);
   info.resize(std::max<size_t>(info.size(), id + 1));
   info[id] = std::move(g);
 }
@@ -266,7 +247,7 @@ void add_mesh(RTCDevice device, RTCScene rtc, const SceneMesh& m, std::vector<Ge
 // `radius` gives the curve's radius at each point: one value for tubes, growing with the
 // depth for ribbons of constant screen width (linear along a segment, as depth is).
 template <class Radius>
-void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle style, Radius radius,
+void add_curves(EmbreeScene& rtc, const SceneCurves& k, CurveStyle style, Radius radius,
                 std::vector<GeometryInfo>& info) {
   // A closed loop of n points is n segments: the first point is repeated at the end.
   // An open polyline of n points is n - 1 segments.
@@ -276,7 +257,7 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle
       points += k.curves.closed(i) ? n + 1 : n, segments += k.curves.closed(i) ? n : n - 1;
   if (segments == 0) return;
   RTCGeometry geometry = rtcNewGeometry(
-      device, style == CurveStyle::tube ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
+      rtc.device(), style == CurveStyle::tube ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
   auto* vertices = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
   auto* indices = static_cast<uint32_t*>(
@@ -294,9 +275,7 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle
     }
   }
   rtcSetGeometryMask(geometry, curve_mask);
-  rtcCommitGeometry(geometry);
-  const unsigned id = rtcAttachGeometry(rtc, geometry);
-  rtcReleaseGeometry(geometry);
+  const unsigned id = rtc.attach(geometry);
   info.resize(std::max<size_t>(info.size(), id + 1));
   info[id] = GeometryInfo{.albedo = linear(k.color), .curve = true};
 }
@@ -304,8 +283,8 @@ void add_curves(RTCDevice device, RTCScene rtc, const SceneCurves& k, CurveStyle
 struct Hit {
   bool found = false;
   unsigned geometry = 0;
-  V3 position, normal;
-  V3 albedo; // linear colour of the surface there
+  Vec3d position, normal;
+  Vec3d albedo; // linear colour of the surface there
 };
 
 // How far behind a surface a curve still shows: curves are drawn over the surfaces they
@@ -322,7 +301,7 @@ public:
   Tracer(RTCScene scene, const std::vector<GeometryInfo>& info, bool has_curves, CurveSlack slack, bool ribbons)
       : scene_(scene), info_(info), has_curves_(has_curves), slack_(slack), ribbons_(ribbons) {}
 
-  Hit trace(V3 origin, V3 direction) const {
+  Hit trace(Vec3d origin, Vec3d direction) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -347,11 +326,11 @@ public:
     h.geometry = rh.hit.geomID;
     h.position = origin + direction * rh.ray.tfar;
     const GeometryInfo& g = info_[h.geometry];
-    V3 n = normalized(V3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
+    Vec3d n = normalized(Vec3d{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
     if (!g.curve && g.style != MeshStyle::hidden) {
       const uint32_t* t = &g.triangles[3 * size_t(rh.hit.primID)];
       const double u = rh.hit.u, v = rh.hit.v;
-      const V3 smooth = normalized(V3(g.normals[t[0]]) * (1 - u - v) + V3(g.normals[t[1]]) * u + V3(g.normals[t[2]]) * v);
+      const Vec3d smooth = normalized(to_double(g.normals[t[0]]) * (1 - u - v) + to_double(g.normals[t[1]]) * u + to_double(g.normals[t[2]]) * v);
       // Meshes are drawn from both sides: the normal faces the viewer. A smooth normal
       // that disagrees with the face's own side (at silhouettes) would shade black.
       if (dot(n, direction) > 0) n = n * -1;
@@ -364,7 +343,7 @@ public:
     return h;
   }
 
-  bool occluded(V3 origin, V3 direction, float far) const {
+  bool occluded(Vec3d origin, Vec3d direction, float far) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
@@ -376,7 +355,7 @@ public:
   }
 
 private:
-  static void set_ray(RTCRay& r, V3 o, V3 d, float near, float far, unsigned mask) {
+  static void set_ray(RTCRay& r, Vec3d o, Vec3d d, float near, float far, unsigned mask) {
     r.org_x = float(o.x), r.org_y = float(o.y), r.org_z = float(o.z);
     r.dir_x = float(d.x), r.dir_y = float(d.y), r.dir_z = float(d.z);
     r.tnear = near, r.tfar = far, r.mask = mask, r.flags = 0, r.time = 0;
@@ -454,7 +433,7 @@ Image render(const Scene& scene, const RenderOptions& o) {
   for (const SceneCurves& k : scene.curves)
     for (Vec3 p : k.curves.points) box.extend(p);
   const double diagonal = std::max(box.diagonal(), 1e-6);
-  const V3 centre = box.empty() ? V3{} : (V3(box.min) + V3(box.max)) * 0.5;
+  const Vec3d centre = box.empty() ? Vec3d{} : (to_double(box.min) + to_double(box.max)) * 0.5;
   // The size of a pixel at the scene's centre, in scene units.
   const double pixel_size = 2 * camera.tan_half_height * dot(centre - camera.eye, camera.forward) / o.height;
 
@@ -467,37 +446,34 @@ Image render(const Scene& scene, const RenderOptions& o) {
                   : area > 0 && length > 0 ? std::max(std::min(0.25 * area / length / 2, 0.004 * diagonal), 0.75 * pixel_size)
                                            : pixel_size;
 
-  const DeviceHandle device(rtcNewDevice(nullptr));
-  if (!device) throw Error("render: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-  const SceneHandle rtc(rtcNewScene(device.get()));
-  // Without it, a ray through a shared edge can slip between two triangles and shade the
-  // inside of the far side: a dark speck on a closed surface.
-  rtcSetSceneFlags(rtc.get(), RTC_SCENE_FLAG_ROBUST);
+  // Robust: without it, a ray through a shared edge can slip between two triangles and
+  // shade the inside of the far side, a dark speck on a closed surface.
+  EmbreeScene rtc("render", RTC_SCENE_FLAG_ROBUST, RTC_BUILD_QUALITY_MEDIUM);
   std::vector<GeometryInfo> info;
-  for (const SceneMesh& m : scene.meshes) add_mesh(device.get(), rtc.get(), m, info);
+  for (const SceneMesh& m : scene.meshes) add_mesh(rtc, m, info);
   // A ribbon's radius grows with the depth so that it keeps the width it has at the
   // centre in pixels; the smallest depth keeps points behind the eye well-formed.
   const double centre_depth = std::max(dot(centre - camera.eye, camera.forward), 1e-9);
   const bool ribbons = o.curve_style == CurveStyle::ribbon;
   for (const SceneCurves& k : scene.curves) {
     if (ribbons)
-      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3 q) {
-        return float(radius * std::max(dot(V3(q) - camera.eye, camera.forward), 1e-6 * centre_depth) / centre_depth);
+      add_curves(rtc, k, o.curve_style, [&](Vec3 q) {
+        return float(radius * std::max(dot(to_double(q) - camera.eye, camera.forward), 1e-6 * centre_depth) / centre_depth);
       }, info);
     else
-      add_curves(device.get(), rtc.get(), k, o.curve_style, [&](Vec3) { return float(radius); }, info);
+      add_curves(rtc, k, o.curve_style, [&](Vec3) { return float(radius); }, info);
   }
-  rtcCommitScene(rtc.get());
+  rtc.commit();
   // Two tube widths, or four ribbon widths at the surface's depth (a ribbon turned to
   // face the eye dips further into a slanted surface than a tube does): enough for a
   // curve a little under the surface it covers (a B-spline cuts the corners of its
   // control polygon, and a tube's core is inside the surface), far too little for a
   // curve on the far side of a solid.
   const CurveSlack slack = ribbons ? CurveSlack{.relative = 8 * radius / centre_depth} : CurveSlack{.absolute = 4 * radius};
-  const Tracer tracer(rtc.get(), info, !scene.curves.empty(), slack, ribbons);
+  const Tracer tracer(rtc.scene(), info, !scene.curves.empty(), slack, ribbons);
 
-  const V3 key = normalized(camera.forward * -0.75 + camera.up * 0.55 + camera.right * -0.35);
-  const V3 background = linear(o.background.color);
+  const Vec3d key = normalized(camera.forward * -0.75 + camera.up * 0.55 + camera.right * -0.35);
+  const Vec3d background = linear(o.background.color);
   const double ao_distance = 0.08 * diagonal, offset = 1e-4 * diagonal;
   const int ao_rays = o.samples >= 4 ? 2 : 4;
 
@@ -510,7 +486,7 @@ Image render(const Scene& scene, const RenderOptions& o) {
       const int x0 = t % tiles_x * tile, y0 = t / tiles_x * tile;
       for (int y = y0; y < std::min(y0 + tile, o.height); ++y)
         for (int x = x0; x < std::min(x0 + tile, o.width); ++x) {
-          V3 sum;
+          Vec3d sum;
           double coverage = 0;
           for (int s = 0; s < o.samples; ++s) {
             // Stratified along a rank-1 lattice (the R2 sequence), shifted per pixel:
@@ -519,11 +495,11 @@ Image render(const Scene& scene, const RenderOptions& o) {
             const double jy = std::fmod(0.5 + s * 0.5698402910 + random01(x, y, 0, 1), 1.0);
             const double sx = (2 * (x + jx) / o.width - 1) * camera.tan_half_height * camera.aspect;
             const double sy = (1 - 2 * (y + jy) / o.height) * camera.tan_half_height;
-            const V3 direction = normalized(camera.forward + camera.right * sx + camera.up * sy);
+            const Vec3d direction = normalized(camera.forward + camera.right * sx + camera.up * sy);
             const Hit hit = tracer.trace(camera.eye, direction);
             if (!hit.found || info[hit.geometry].style == MeshStyle::hidden) continue;
             const GeometryInfo& g = info[hit.geometry];
-            const V3 n = hit.normal;
+            const Vec3d n = hit.normal;
             if (g.curve && ribbons) {
               sum = sum + g.albedo;
               coverage += 1;
@@ -534,29 +510,29 @@ Image render(const Scene& scene, const RenderOptions& o) {
               // shadows, so the shape shows without competing with the curves.
               constexpr double opacity = 0.5;
               const double light = 0.5 + 0.25 * std::max(0.0, dot(n, key)) + 0.1 * dot(n, camera.up);
-              sum = sum + V3{light, light, light} * opacity;
+              sum = sum + Vec3d{light, light, light} * opacity;
               coverage += opacity;
               continue;
             }
             // Cosine-weighted directions around n for ambient occlusion.
-            const V3 a = std::abs(n.x) > 0.5 ? V3{0, 1, 0} : V3{1, 0, 0};
-            const V3 b1 = normalized(cross(n, a)), b2 = cross(n, b1);
-            const V3 start = hit.position + n * offset;
+            const Vec3d a = std::abs(n.x) > 0.5 ? Vec3d{0, 1, 0} : Vec3d{1, 0, 0};
+            const Vec3d b1 = normalized(cross(n, a)), b2 = cross(n, b1);
+            const Vec3d start = hit.position + n * offset;
             int open = 0;
             for (int r = 0; r < ao_rays; ++r) {
               const double u1 = random01(x, y, s, 2 + 2 * r), u2 = random01(x, y, s, 3 + 2 * r);
               const double radial = std::sqrt(u1), phi = 2 * pi * u2;
-              const V3 d = b1 * (radial * std::cos(phi)) + b2 * (radial * std::sin(phi)) + n * std::sqrt(1 - u1);
+              const Vec3d d = b1 * (radial * std::cos(phi)) + b2 * (radial * std::sin(phi)) + n * std::sqrt(1 - u1);
               open += !tracer.occluded(start, d, float(ao_distance));
             }
             const double ao = double(open) / ao_rays;
             const double diffuse = std::max(0.0, dot(n, key));
             const double sky = 0.55 + 0.45 * dot(n, camera.up);
-            V3 colour = hit.albedo * (0.72 * diffuse + 0.38 * sky * ao);
+            Vec3d colour = hit.albedo * (0.72 * diffuse + 0.38 * sky * ao);
             if (g.curve) {
-              const V3 half = normalized(key - direction);
+              const Vec3d half = normalized(key - direction);
               const double specular = 0.25 * std::pow(std::max(0.0, dot(n, half)), 40);
-              colour = colour + V3{specular, specular, specular};
+              colour = colour + Vec3d{specular, specular, specular};
             }
             sum = sum + colour;
             coverage += 1;
@@ -564,11 +540,11 @@ Image render(const Scene& scene, const RenderOptions& o) {
           uint8_t* out = &image.rgba[(size_t(y) * o.width + x) * 4];
           if (o.background.transparent) {
             // Straight (not premultiplied) alpha, as PNG stores it.
-            const V3 c = coverage > 0 ? sum * (1 / coverage) : V3{};
+            const Vec3d c = coverage > 0 ? sum * (1 / coverage) : Vec3d{};
             out[0] = to_byte(c.x), out[1] = to_byte(c.y), out[2] = to_byte(c.z);
             out[3] = uint8_t(std::lround(255 * coverage / o.samples));
           } else {
-            const V3 c = (sum + background * (o.samples - coverage)) * (1.0 / o.samples);
+            const Vec3d c = (sum + background * (o.samples - coverage)) * (1.0 / o.samples);
             out[0] = to_byte(c.x), out[1] = to_byte(c.y), out[2] = to_byte(c.z), out[3] = 255;
           }
         }

@@ -2,7 +2,8 @@
 
 #include "meander/check.h"
 #include "meander/error.h"
-#include "triangle_bvh.h"
+#include "core/vec3d.h"
+#include "embree/embree_scene.h"
 
 #include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
@@ -15,22 +16,15 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
+#include <numeric>
 
 namespace meander {
 namespace {
 
-// Geometry in double: float inputs promote exactly, and differences of floats of
+// Geometry in double (Vec3d): float inputs promote exactly, and differences of floats of
 // similar magnitude stay exact, so the signs below are exact for the small-integer and
 // axis-aligned configurations where ties matter (shared planes, touching corners) and
 // correct elsewhere unless a point lies within ~1e-16 relative of a plane.
-struct P3 {
-  double x, y, z;
-};
-P3 to_p3(Vec3 v) { return {v.x, v.y, v.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 int sign(double v) { return (v > 0) - (v < 0); }
 
 // The plane through a, b, c, to tell on which side points lie. The cross product and
@@ -38,11 +32,11 @@ int sign(double v) { return (v > 0) - (v < 0); }
 // triangles tests up to six points against each one's plane, and the pair search tests
 // tens of millions of pairs.
 struct Plane {
-  P3 a, b, c;
-  P3 normal;    // (b - a) x (c - a)
-  P3 magnitude; // per coordinate of the normal, the sum of the absolute products it is made of
-  Plane(P3 a_, P3 b_, P3 c_) : a(a_), b(b_), c(c_) {
-    const P3 ba = b - a, ca = c - a;
+  Vec3d a, b, c;
+  Vec3d normal;    // (b - a) x (c - a)
+  Vec3d magnitude; // per coordinate of the normal, the sum of the absolute products it is made of
+  Plane(Vec3d a_, Vec3d b_, Vec3d c_) : a(a_), b(b_), c(c_) {
+    const Vec3d ba = b - a, ca = c - a;
     normal = cross(ba, ca);
     magnitude = {std::abs(ba.y * ca.z) + std::abs(ba.z * ca.y), std::abs(ba.z * ca.x) + std::abs(ba.x * ca.z),
                  std::abs(ba.x * ca.y) + std::abs(ba.y * ca.x)};
@@ -53,8 +47,8 @@ struct Plane {
   // below it (d almost in the plane, as nearly coplanar faces of smooth ribbons are) the
   // determinant is recomputed in quadruple precision from the float coordinates, which
   // resolves it unless d is within ~1e-30 relative of the plane.
-  int side(P3 d) const {
-    const P3 da = d - a;
+  int side(Vec3d d) const {
+    const Vec3d da = d - a;
     const double det = dot(normal, da);
     const double permanent = magnitude.x * std::abs(da.x) + magnitude.y * std::abs(da.y) + magnitude.z * std::abs(da.z);
     if (std::abs(det) > 7.771561172376103e-16 * permanent) return sign(det);
@@ -69,19 +63,19 @@ struct Plane {
 
 // +1 if d lies on the side of plane (a, b, c) that (b - a) x (c - a) points to (see
 // Plane::side).
-int orient3d(P3 a, P3 b, P3 c, P3 d) { return Plane(a, b, c).side(d); }
+int orient3d(Vec3d a, Vec3d b, Vec3d c, Vec3d d) { return Plane(a, b, c).side(d); }
 
 // The axis along which the normal of (a, b, c) is largest: dropping it projects the
 // triangle's plane onto a coordinate plane without collapsing it.
-int dominant_axis(P3 a, P3 b, P3 c) {
-  const P3 n = cross(b - a, c - a);
+int dominant_axis(Vec3d a, Vec3d b, Vec3d c) {
+  const Vec3d n = cross(b - a, c - a);
   const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
   return x >= y && x >= z ? 0 : y >= z ? 1 : 2;
 }
 
 // Orientation of a, b, c projected along `axis` (the other two axes in cyclic order).
-int orient2d(P3 a, P3 b, P3 c, int axis) {
-  const auto uv = [axis](P3 p) {
+int orient2d(Vec3d a, Vec3d b, Vec3d c, int axis) {
+  const auto uv = [axis](Vec3d p) {
     return axis == 0 ? std::pair{p.y, p.z} : axis == 1 ? std::pair{p.z, p.x} : std::pair{p.x, p.y};
   };
   const auto [ax, ay] = uv(a);
@@ -91,29 +85,29 @@ int orient2d(P3 a, P3 b, P3 c, int axis) {
 }
 
 // Closed segments ab and cd, in one plane projected along `axis`.
-bool segments_meet_2d(P3 a, P3 b, P3 c, P3 d, int axis) {
+bool segments_meet_2d(Vec3d a, Vec3d b, Vec3d c, Vec3d d, int axis) {
   const int o1 = orient2d(a, b, c, axis), o2 = orient2d(a, b, d, axis);
   const int o3 = orient2d(c, d, a, axis), o4 = orient2d(c, d, b, axis);
   if (o1 * o2 > 0 || o3 * o4 > 0) return false;
   if (o1 != 0 || o2 != 0) return true;
   // Collinear: overlap along the coordinate in which the line varies most.
-  const P3 e = b - a;
+  const Vec3d e = b - a;
   const double ex = std::abs(e.x), ey = std::abs(e.y), ez = std::abs(e.z);
-  const auto coordinate = [&](P3 p) { return ex >= ey && ex >= ez ? p.x : ey >= ez ? p.y : p.z; };
+  const auto coordinate = [&](Vec3d p) { return ex >= ey && ex >= ez ? p.x : ey >= ez ? p.y : p.z; };
   const double a1 = coordinate(a), b1 = coordinate(b), c1 = coordinate(c), d1 = coordinate(d);
   return std::min(a1, b1) <= std::max(c1, d1) && std::min(c1, d1) <= std::max(a1, b1);
 }
 
 // p in the closed triangle abc (not degenerate), all in one plane projected along `axis`.
-bool inside_triangle_2d(P3 p, P3 a, P3 b, P3 c, int axis) {
+bool inside_triangle_2d(Vec3d p, Vec3d a, Vec3d b, Vec3d c, int axis) {
   const int o1 = orient2d(a, b, p, axis), o2 = orient2d(b, c, p, axis), o3 = orient2d(c, a, p, axis);
   return !((o1 < 0 || o2 < 0 || o3 < 0) && (o1 > 0 || o2 > 0 || o3 > 0));
 }
 
 // The closed segment st meets the closed triangle abc (not degenerate), given the sides
 // of abc's plane that s and t lie on (ds, dt: Plane::side).
-bool segment_meets_triangle(P3 s, P3 t, int ds, int dt, const Plane& abc) {
-  const P3 a = abc.a, b = abc.b, c = abc.c;
+bool segment_meets_triangle(Vec3d s, Vec3d t, int ds, int dt, const Plane& abc) {
+  const Vec3d a = abc.a, b = abc.b, c = abc.c;
   if (ds * dt > 0) return false;
   if (ds == 0 && dt == 0) {
     const int axis = dominant_axis(a, b, c);
@@ -134,7 +128,7 @@ bool segment_meets_triangle(P3 s, P3 t, int ds, int dt, const Plane& abc) {
 // Two closed triangles with no vertex in common meet. Where they meet, the meeting set
 // is convex and its extreme points lie on edges, so some edge of one meets the other:
 // six segment tests after the cheap rejection by the planes.
-bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
+bool triangles_meet(const std::array<Vec3d, 3>& t, const std::array<Vec3d, 3>& u) {
   const Plane pu(u[0], u[1], u[2]);
   const int a[3] = {pu.side(t[0]), pu.side(t[1]), pu.side(t[2])}; // t's corners against u's plane
   if (a[0] == a[1] && a[1] == a[2] && a[0] != 0) return false;
@@ -150,7 +144,7 @@ bool triangles_meet(const std::array<P3, 3>& t, const std::array<P3, 3>& u) {
 
 // Direction a - v lies in the closed wedge of triangle (v, c, d) at v, given the side of
 // that triangle's plane a lies on (Plane::side).
-bool in_wedge(P3 v, P3 a, int side, P3 c, P3 d) {
+bool in_wedge(Vec3d v, Vec3d a, int side, Vec3d c, Vec3d d) {
   if (side != 0) return false;
   const int axis = dominant_axis(v, c, d);
   const int s = orient2d(v, c, d, axis);
@@ -161,7 +155,7 @@ bool in_wedge(P3 v, P3 a, int side, P3 c, P3 d) {
 // coincides with its wedge, so they meet beyond v iff an edge meets the other triangle
 // away from v: the far edges ab and cd anywhere, an edge through v only when it lies in
 // the other's plane and inside its wedge.
-bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
+bool meet_beyond_vertex(Vec3d v, Vec3d a, Vec3d b, Vec3d c, Vec3d d) {
   // Usual on a smooth surface: one triangle lies strictly on one side of the other's
   // plane except at v, so they cannot meet elsewhere. One plane and two signs decide it.
   const Plane vab(v, a, b);
@@ -177,7 +171,7 @@ bool meet_beyond_vertex(P3 v, P3 a, P3 b, P3 c, P3 d) {
 // Triangles (u, w, a) and (u, w, b) sharing the edge uw meet beyond it iff they fold
 // onto each other: two planes through uw meet only in its line, so only coplanar
 // triangles on the same side of uw overlap.
-bool fold_over_edge(P3 u, P3 w, P3 a, P3 b) {
+bool fold_over_edge(Vec3d u, Vec3d w, Vec3d a, Vec3d b) {
   if (orient3d(u, w, a, b) != 0) return false;
   const int axis = dominant_axis(u, w, a);
   return orient2d(u, w, a, axis) == orient2d(u, w, b, axis);
@@ -216,7 +210,7 @@ bool intersect(const PolygonMesh& mesh, const Triangles& tris, int32_t i, int32_
         ui[shared] = b;
         ++shared;
       }
-  const auto p = [&](int32_t v) { return to_p3(mesh.positions[size_t(v)]); };
+  const auto p = [&](int32_t v) { return to_double(mesh.positions[size_t(v)]); };
   if (shared == 0)
     return triangles_meet({p(t[0]), p(t[1]), p(t[2])}, {p(u[0]), p(u[1]), p(u[2])});
   if (shared == 1) {
@@ -231,9 +225,9 @@ bool intersect(const PolygonMesh& mesh, const Triangles& tris, int32_t i, int32_
 }
 
 bool degenerate(const PolygonMesh& mesh, const std::array<int32_t, 3>& t) {
-  const P3 a = to_p3(mesh.positions[size_t(t[0])]), b = to_p3(mesh.positions[size_t(t[1])]),
-           c = to_p3(mesh.positions[size_t(t[2])]);
-  const P3 n = cross(b - a, c - a);
+  const Vec3d a = to_double(mesh.positions[size_t(t[0])]), b = to_double(mesh.positions[size_t(t[1])]),
+           c = to_double(mesh.positions[size_t(t[2])]);
+  const Vec3d n = cross(b - a, c - a);
   return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
@@ -246,17 +240,97 @@ std::vector<uint8_t> degenerate_triangles(const PolygonMesh& mesh, const Triangl
   return flags;
 }
 
+// A triangle's bounding box. Closed: boxes that touch overlap, so that touching
+// triangles are tested.
+struct Box {
+  float lo[3] = {INFINITY, INFINITY, INFINITY};
+  float hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  bool overlaps(const Box& b) const {
+    return lo[0] <= b.hi[0] && b.lo[0] <= hi[0] && lo[1] <= b.hi[1] && b.lo[1] <= hi[1] && lo[2] <= b.hi[2] &&
+           b.lo[2] <= hi[2];
+  }
+};
+
+// The boxes of the triangles `which` of `tris`.
+std::vector<Box> triangle_boxes(const PolygonMesh& mesh, const Triangles& tris, std::span<const int32_t> which) {
+  std::vector<Box> boxes(which.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, boxes.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k < r.end(); ++k)
+      for (const int32_t v : tris.corners[size_t(which[k])]) {
+        const Vec3 p = mesh.positions[size_t(v)];
+        const float c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) {
+          boxes[k].lo[a] = std::min(boxes[k].lo[a], c[a]);
+          boxes[k].hi[a] = std::max(boxes[k].hi[a], c[a]);
+        }
+      }
+  });
+  return boxes;
+}
+
+// Embree's collision query finds the candidate pairs: a scene holds one user geometry
+// whose primitives are boxes (rtcCollide takes nothing else), and `boxes` must outlive
+// the scene's commit, which reads them.
+void add_boxes(EmbreeScene& scene, const std::vector<Box>& boxes) {
+  RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, unsigned(boxes.size()));
+  rtcSetGeometryUserData(geometry, const_cast<Box*>(boxes.data()));
+  rtcSetGeometryBoundsFunction(
+      geometry,
+      [](const RTCBoundsFunctionArguments* args) {
+        // Embree leaves out boxes beyond about 1.8e18; clamping keeps every overlap.
+        const auto clamp = [](float x) { return std::clamp(x, -1e18f, 1e18f); };
+        const Box& b = static_cast<const Box*>(args->geometryUserPtr)[args->primID];
+        *args->bounds_o = {clamp(b.lo[0]), clamp(b.lo[1]), clamp(b.lo[2]), 0, clamp(b.hi[0]), clamp(b.hi[1]), clamp(b.hi[2]), 0};
+      },
+      nullptr);
+  scene.attach(geometry);
+  scene.commit();
+}
+
+// Calls f(i, j) for every box i of `a` and j of `b` that overlap, from several threads at
+// once and in no particular order. Embree pairs whole leaves of its two trees, so the
+// boxes are compared here. With a and b the same scene each unordered pair comes once,
+// as i < j (Embree meets it in both orders).
+template <class F>
+void for_each_overlapping(const EmbreeScene& a, const std::vector<Box>& boxes_a, const EmbreeScene& b,
+                          const std::vector<Box>& boxes_b, F&& f) {
+  const bool self = &a == &b;
+  auto candidate = [&](unsigned i, unsigned j) {
+    if ((!self || i < j) && boxes_a[i].overlaps(boxes_b[j])) f(int32_t(i), int32_t(j));
+  };
+  using Candidate = decltype(candidate);
+  rtcCollide(
+      a.scene(), b.scene(),
+      [](void* user, RTCCollision* pairs, unsigned count) {
+        for (unsigned k = 0; k < count; ++k) (*static_cast<Candidate*>(user))(pairs[k].primID0, pairs[k].primID1);
+      },
+      &candidate);
+  a.throw_if_failed();
+}
+
+// Calls f(i, j), i < j, for every pair of triangles whose boxes overlap, as for_each_overlapping.
+template <class F>
+void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F&& f) {
+  if (tris.corners.empty()) return;
+  std::vector<int32_t> all(tris.corners.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<Box> boxes = triangle_boxes(mesh, tris, all);
+  EmbreeScene scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+  add_boxes(scene, boxes);
+  for_each_overlapping(scene, boxes, scene, boxes, f);
+}
+
 // The first intersecting pair in the order of PrintabilityReport::first_intersection:
 // the least (i, j), i < j, in lexicographic order. Pairs are met in parallel in any
 // order; each one not below the best found so far is dismissed untested, and the best
 // only ever decreases, so the answer is that least pair whatever the timing.
 std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Triangles& tris,
-                                               const std::vector<uint8_t>& skip, const TriangleBvh& bvh) {
+                                               const std::vector<uint8_t>& skip) {
   const auto key = [](int32_t i, int32_t j) { return uint64_t(uint32_t(i)) << 32 | uint32_t(j); };
   constexpr uint64_t none = std::numeric_limits<uint64_t>::max();
   std::atomic<uint64_t> best{none};
-  bvh.for_each_overlapping_pair([&](int32_t a, int32_t b) {
-    const int32_t i = std::min(a, b), j = std::max(a, b);
+  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
     const uint64_t k = key(i, j);
     if (k >= best.load(std::memory_order_relaxed) || skip[size_t(i)] || skip[size_t(j)] ||
         tris.face[size_t(i)] == tris.face[size_t(j)] || !intersect(mesh, tris, i, j))
@@ -272,8 +346,8 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
 
 // Marks in `hit` both triangles of every intersecting pair.
 void mark_intersecting(const PolygonMesh& mesh, const Triangles& tris, const std::vector<uint8_t>& skip,
-                       const TriangleBvh& bvh, std::vector<uint8_t>& hit) {
-  bvh.for_each_overlapping_pair([&](int32_t i, int32_t j) {
+                       std::vector<uint8_t>& hit) {
+  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
     if (skip[size_t(i)] || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)]) return;
     // Threads share the flags; any of them writes only 1, so relaxed order is enough.
     std::atomic_ref<uint8_t> hit_i(hit[size_t(i)]), hit_j(hit[size_t(j)]);
@@ -300,13 +374,13 @@ void measure_components(const PolygonMesh& mesh, const Triangles& tris, const Me
   // tetrahedron with the origin. Relative to a point near the mesh (the box's centre) to
   // keep the terms small when the model sits far from the origin.
   const Box3& box = report.bounding_box;
-  const P3 centre = box.empty() ? P3{0, 0, 0} : to_p3((box.min + box.max) * 0.5f);
+  const Vec3d centre = box.empty() ? Vec3d{0, 0, 0} : to_double((box.min + box.max) * 0.5f);
   for (size_t i = 0; i < tris.corners.size(); ++i) {
     const int32_t k = topology.face_components[size_t(tris.face[i])];
     if (k < 0) continue;
     const std::array<int32_t, 3>& t = tris.corners[i];
-    const P3 a = to_p3(mesh.positions[size_t(t[0])]) - centre, b = to_p3(mesh.positions[size_t(t[1])]) - centre,
-             cc = to_p3(mesh.positions[size_t(t[2])]) - centre;
+    const Vec3d a = to_double(mesh.positions[size_t(t[0])]) - centre, b = to_double(mesh.positions[size_t(t[1])]) - centre,
+             cc = to_double(mesh.positions[size_t(t[2])]) - centre;
     components[size_t(k)].volume += dot(a, cross(b, cc)) / 6;
   }
   for (const SolidComponent& k : components) report.volume += k.volume;
@@ -328,13 +402,6 @@ void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
     if (t[0] == c->vertex || t[1] == c->vertex || t[2] == c->vertex) args->valid[k] = 0;
   }
 }
-
-struct EmbreeDevice {
-  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
-};
-struct EmbreeScene {
-  void operator()(RTCScene s) const { rtcReleaseScene(s); }
-};
 
 // `inward` per face: -1 to cast against the normals (a component of positive volume),
 // +1 along them (one turned inside out), 0 to cast no ray from its vertices. Embree
@@ -360,9 +427,9 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1024), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t j = r.begin(); j < r.end(); ++j) {
         const std::array<int32_t, 3>& t = tris.corners[first + j];
-        const P3 corner[3] = {to_p3(mesh.positions[size_t(t[0])]), to_p3(mesh.positions[size_t(t[1])]),
-                              to_p3(mesh.positions[size_t(t[2])])};
-        P3 n = cross(corner[1] - corner[0], corner[2] - corner[0]);
+        const Vec3d corner[3] = {to_double(mesh.positions[size_t(t[0])]), to_double(mesh.positions[size_t(t[1])]),
+                              to_double(mesh.positions[size_t(t[2])])};
+        Vec3d n = cross(corner[1] - corner[0], corner[2] - corner[0]);
         const double length = std::sqrt(dot(n, n));
         flat[j] = length == 0;
         if (flat[j]) continue;
@@ -370,7 +437,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
         // Weighted by the corner angle, so that the normal does not depend on how the
         // faces around the vertex are triangulated (a cube's corner gets its diagonal).
         for (int k = 0; k < 3; ++k) {
-          const P3 e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
+          const Vec3d e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
           const double angle = std::atan2(std::sqrt(dot(cross(e1, e2), cross(e1, e2))), dot(e1, e2));
           weighted[j][size_t(k)] = Vec3{float(angle * n.x), float(angle * n.y), float(angle * n.z)};
         }
@@ -387,14 +454,10 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
     }
   }
 
-  const std::unique_ptr<RTCDeviceTy, EmbreeDevice> device(rtcNewDevice(nullptr));
-  if (!device) throw Error("printability: cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-  const std::unique_ptr<RTCSceneTy, EmbreeScene> scene(rtcNewScene(device.get()));
   // A quick build and a compact tree: on millions of triangles building the tree (and
   // touching its fresh memory) costs more than the one ray per vertex it serves.
-  rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);
-  rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_LOW);
-  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  EmbreeScene scene("printability", RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT, RTC_BUILD_QUALITY_LOW);
+  RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), size_t(nv)));
   for (int32_t v = 0; v < nv; ++v) {
@@ -406,10 +469,8 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tris.corners.data(), 0,
                              sizeof(std::array<int32_t, 3>), tris.corners.size());
   rtcSetGeometryIntersectFilterFunction(geometry, skip_triangles_around_vertex);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene.get(), geometry);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene.get());
+  scene.attach(geometry);
+  scene.commit();
 
   // The rays in the order their vertices first appear among the triangles, so that
   // consecutive rays start near each other and walk the same parts of the tree
@@ -453,7 +514,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
           rh.ray.tfar = INFINITY;
           rh.ray.mask = 0xffffffffu;
           rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene.get(), &context.context, &rh);
+          rtcIntersect1(scene.scene(), &context.context, &rh);
           if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) best = std::min(best, Thinnest{double(rh.ray.tfar), v});
         }
         return best;
@@ -512,8 +573,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     report.self_intersections_checked = true;
   } else if (options.self_intersections) {
     report.self_intersections_checked = true;
-    const TriangleBvh bvh(mesh.positions, tris.corners);
-    report.first_intersection = first_intersecting_pair(mesh, tris, skip, bvh);
+    report.first_intersection = first_intersecting_pair(mesh, tris, skip);
     report.self_intersecting = report.first_intersection[0] >= 0;
   }
   if (options.thickness && report.boundary_edges == 0 && !report.components.empty()) {
@@ -531,32 +591,30 @@ std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<
   const std::vector<uint8_t> skip = degenerate_triangles(mesh, tris);
   std::vector<uint8_t> hit(tris.corners.size());
   if (among.empty()) {
-    mark_intersecting(mesh, tris, skip, TriangleBvh(mesh.positions, tris.corners), hit);
+    mark_intersecting(mesh, tris, skip, hit);
   } else {
-    // A tree over the chosen faces' triangles only, and every triangle's box looked up
-    // in it: a pair of two chosen triangles is tested from the lower one.
-    std::vector<int32_t> chosen;
-    std::vector<std::array<int32_t, 3>> corners;
+    // The chosen faces' triangles against all: a pair of two chosen triangles is tested
+    // from the lower one.
+    std::vector<int32_t> chosen, tested;
     for (size_t i = 0; i < tris.corners.size(); ++i)
-      if (among[size_t(tris.face[i])] && !skip[i]) {
-        chosen.push_back(int32_t(i));
-        corners.push_back(tris.corners[i]);
+      if (!skip[i]) {
+        tested.push_back(int32_t(i));
+        if (among[size_t(tris.face[i])]) chosen.push_back(int32_t(i));
       }
-    const TriangleBvh bvh(mesh.positions, corners);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.corners.size(), 1 << 12), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i < r.end(); ++i) {
-        if (skip[i]) continue;
-        TriangleBvh::Box box;
-        for (const int32_t v : tris.corners[i]) box.extend(mesh.positions[size_t(v)]);
-        const bool i_chosen = among[size_t(tris.face[i])];
-        bvh.for_each_overlapping(box, [&](int32_t k) {
-          const size_t j = size_t(chosen[size_t(k)]);
-          if ((i_chosen && j <= i) || tris.face[i] == tris.face[j] || !intersect(mesh, tris, int32_t(i), int32_t(j))) return;
-          std::atomic_ref<uint8_t>(hit[i]).store(1, std::memory_order_relaxed);
-          std::atomic_ref<uint8_t>(hit[j]).store(1, std::memory_order_relaxed);
-        });
-      }
-    });
+    if (!chosen.empty()) {
+      const std::vector<Box> tested_boxes = triangle_boxes(mesh, tris, tested), chosen_boxes = triangle_boxes(mesh, tris, chosen);
+      EmbreeScene tested_scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+      EmbreeScene chosen_scene(tested_scene, RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+      add_boxes(tested_scene, tested_boxes);
+      add_boxes(chosen_scene, chosen_boxes);
+      for_each_overlapping(tested_scene, tested_boxes, chosen_scene, chosen_boxes, [&](int32_t a, int32_t k) {
+        const size_t i = size_t(tested[size_t(a)]), j = size_t(chosen[size_t(k)]);
+        if ((among[size_t(tris.face[i])] && j <= i) || tris.face[i] == tris.face[j] || !intersect(mesh, tris, int32_t(i), int32_t(j)))
+          return;
+        std::atomic_ref<uint8_t>(hit[i]).store(1, std::memory_order_relaxed);
+        std::atomic_ref<uint8_t>(hit[j]).store(1, std::memory_order_relaxed);
+      });
+    }
   }
   std::vector<int32_t> faces;
   for (size_t i = 0; i < hit.size(); ++i)

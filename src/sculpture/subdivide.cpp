@@ -1,6 +1,7 @@
 #include "meander/subdivide.h"
 
 #include "meander/error.h"
+#include "core/vec3d.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -14,10 +15,9 @@ namespace meander {
 
 namespace {
 
-// The vertex type OpenSubdiv's PrimvarRefiner interpolates; double so that deep levels
-// do not accumulate float rounding.
-struct Point {
-  double x = 0, y = 0, z = 0;
+// The vertex type OpenSubdiv's PrimvarRefiner interpolates, which calls these two
+// members; double so that deep levels do not accumulate float rounding.
+struct Point : Vec3d {
   void Clear(void* = nullptr) { x = y = z = 0; }
   void AddWithWeight(const Point& p, float w) {
     x += w * p.x;
@@ -83,7 +83,7 @@ void interpolate_positions(const OpenSubdiv::Far::TopologyRefiner& refiner, bool
   using namespace OpenSubdiv;
   const int levels = refiner.GetMaxLevel();
   std::vector<Point> points(size_t(refiner.GetNumVerticesTotal()));
-  for (size_t v = 0; v < control.size(); ++v) points[v] = {control[v].x, control[v].y, control[v].z};
+  for (size_t v = 0; v < control.size(); ++v) points[v] = {to_double(control[v])};
   Far::PrimvarRefiner primvar(refiner);
   Point* src = points.data();
   for (int level = 1; level <= levels; ++level) {
@@ -100,7 +100,7 @@ void interpolate_positions(const OpenSubdiv::Far::TopologyRefiner& refiner, bool
     src = limit.data();
   }
   out.resize(size_t(finest.GetNumVertices()));
-  for (size_t v = 0; v < out.size(); ++v) out[v] = {float(src[v].x), float(src[v].y), float(src[v].z)};
+  for (size_t v = 0; v < out.size(); ++v) out[v] = to_float(src[v]);
 }
 
 // The finest level's faces.

@@ -534,9 +534,8 @@ PolygonMesh split_quads(const PolygonMesh& mesh, std::vector<Vec3> positions) {
   return out;
 }
 
-} // namespace
-
-VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
+// Refuses options out of range and a result a mesh cannot index, before any work.
+void check_variable_options(const TriangleCycle& cycle, const VariableWireOptions& options) {
   for (const auto& [name, value] : {std::pair{"s", options.s}, {"t", options.t}})
     if (!(value >= 0 && value <= 1)) throw ParameterError(name, " must be between 0 and 1 (got " + std::to_string(value) + ")");
   if (!(options.thickness >= 0) || !std::isfinite(options.thickness))
@@ -545,14 +544,21 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   require_indexable(variable_wire_triangles(cycle.num_triangles(), options),
                     "the variable " + std::string(options.shape == WireShape::wire ? "wire" : "ribbon") + " at " +
                         std::to_string(options.levels) + " levels");
-  const bool ribbon = options.shape == WireShape::ribbon;
-  const Ladder ladder = make_ladder(quads, cycle);
+}
 
-  // Two rungs per triangle: where the curve enters its trapezoid and where it leaves.
-  // The bilinear formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's
-  // rotation order; corner v_mn is p_(1-m)(1-n) when s = t = 1.
+// The rungs of the strip, two per triangle of the cycle (where the curve enters its
+// trapezoid and where it leaves), each with the normal its slab stands on.
+struct Rungs {
+  std::vector<Vec3> left, right, up;
+  size_t size() const { return left.size(); }
+};
+
+// The paper's trapezoid in each triangle of the cycle, as its two rungs. The bilinear
+// formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's rotation order;
+// corner v_mn is p_(1-m)(1-n) when s = t = 1.
+Rungs trapezoid_rungs(const QuadMesh& quads, const TriangleCycle& cycle, const Ladder& ladder, const VariableWireOptions& options) {
   const size_t triangles = cycle.order.size();
-  std::vector<Vec3> left(2 * triangles), right(2 * triangles), up(2 * triangles);
+  Rungs rungs{std::vector<Vec3>(2 * triangles), std::vector<Vec3>(2 * triangles), std::vector<Vec3>(2 * triangles)};
   const float w0s = float((1 - options.s) / 2), w1s = float((1 + options.s) / 2);
   const float w0t = float((1 - options.t) / 2), w1t = float((1 + options.t) / 2);
   // Corners on the p side, then the n side, each as (apex rail, other rail).
@@ -577,39 +583,44 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
       for (size_t r = 0; r < 2; ++r) {
         const size_t side = r == 0 ? !entry_p : entry_p, rung = 2 * i + r;
         const auto [apex_corner, other_corner] = corners[side];
-        left[rung] = apex_right ? other_corner : apex_corner;
-        right[rung] = apex_right ? apex_corner : other_corner;
-        up[rung] = normal;
+        rungs.left[rung] = apex_right ? other_corner : apex_corner;
+        rungs.right[rung] = apex_right ? apex_corner : other_corner;
+        rungs.up[rung] = normal;
       }
     }
   }
+  return rungs;
+}
 
-  // The automatic thickness follows the ribbon's local width, as the width follows the
-  // triangles: one global figure makes tall walls of the narrow parts, whose tops meet
-  // in hollows and fold over in tight turns.
-  //
-  // Where the slabs of two consecutive triangles meet at an angle, the sections at the
-  // two ends of their connector lean towards each other on the inside of the bend and
-  // cross at L / (2 tan(angle / 2)) from it (L: the connector's length): a thicker slab
-  // folds into itself there (the tetrahedron's edges, a hexahedral mesh's creases). The
-  // automatic thickness stays below that, with a margin for the smoothing, and below the
-  // triangle's smallest altitude: a slab taller than its triangle is wide (a sliver of a
-  // CAD model's fans, a scan's needles) leans into its neighbours wherever the surface
-  // curves.
-  // Only a wire of automatic thickness uses these limits.
-  const bool automatic = !ribbon && options.thickness == 0;
-  std::vector<float> thickness_limit(automatic ? left.size() : 0);
+// The largest half thickness per rung of a wire of automatic thickness. The automatic
+// thickness follows the ribbon's local width, as the width follows the triangles: one
+// global figure makes tall walls of the narrow parts, whose tops meet in hollows and
+// fold over in tight turns.
+//
+// Where the slabs of two consecutive triangles meet at an angle, the sections at the
+// two ends of their connector lean towards each other on the inside of the bend and
+// cross at L / (2 tan(angle / 2)) from it (L: the connector's length): a thicker slab
+// folds into itself there (the tetrahedron's edges, a hexahedral mesh's creases). The
+// automatic thickness stays below that, with a margin for the smoothing, and below the
+// triangle's smallest altitude: a slab taller than its triangle is wide (a sliver of a
+// CAD model's fans, a scan's needles) leans into its neighbours wherever the surface
+// curves.
+std::vector<float> thickness_limits(const QuadMesh& quads, const TriangleCycle& cycle, const Ladder& ladder, const Rungs& rungs) {
+  const std::vector<Vec3>& left = rungs.left;
+  const std::vector<Vec3>& right = rungs.right;
+  const std::vector<Vec3>& up = rungs.up;
+  std::vector<float> thickness_limit(rungs.size());
   for (size_t i = 0; i < thickness_limit.size() / 2; ++i) {
     const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
     const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
     const double longest = std::max({norm(a - p), norm(q - a), norm(p - q)});
     thickness_limit[2 * i] = thickness_limit[2 * i + 1] = float(longest > 0 ? 0.5 * norm(cross(a - p, q - p)) / longest : 0.0);
   }
-  for (int32_t c = 0; c < cycle.num_cycles() && automatic; ++c) {
-    const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), rungs = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
-    for (size_t k = 1; k < rungs; k += 2) {
-      const size_t a = first + k, b = first + (k + 1) % rungs;
-      const bool swap = (k + 1) % rungs == 0 && ladder.mobius[size_t(c)]; // left meets right
+  for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
+    const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), count = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
+    for (size_t k = 1; k < count; k += 2) {
+      const size_t a = first + k, b = first + (k + 1) % count;
+      const bool swap = (k + 1) % count == 0 && ladder.mobius[size_t(c)]; // left meets right
       const double angle = std::acos(std::clamp(double(dot(up[a], up[b])) * (swap ? -1 : 1), -1.0, 1.0));
       const double length = swap ? std::min(norm(left[b] - right[a]), norm(right[b] - left[a]))
                                  : std::min(norm(left[b] - left[a]), norm(right[b] - right[a]));
@@ -620,119 +631,165 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // leg or plate) must not reach each other: each stays below 0.7 times half the distance
   // from its rung's midpoint to any other part of the strip's midline, found as the
   // constant wire's clearance is, on a grid, without its bends.
-  if (automatic) {
-    Polylines midline;
-    midline.points.resize(left.size());
-    for (size_t r = 0; r < left.size(); ++r) midline.points[r] = (left[r] + right[r]) * 0.5f;
-    midline.start.resize(cycle.cycle_start.size());
-    for (size_t c = 0; c < cycle.cycle_start.size(); ++c) midline.start[c] = 2 * cycle.cycle_start[c];
-    const Clearance apart = tube_clearance(midline, 1, 1.0, false);
-    for (size_t r = 0; r < left.size(); ++r) thickness_limit[r] = std::min(thickness_limit[r], float(0.7 * apart.local[r]));
-  }
-  auto half_thickness = [&](size_t rung) {
-    if (!automatic) return float(options.thickness / 2);
-    return std::min(thickness_limit[rung], float(0.25 * norm(right[rung] - left[rung])));
-  };
+  Polylines midline;
+  midline.points.resize(left.size());
+  for (size_t r = 0; r < left.size(); ++r) midline.points[r] = (left[r] + right[r]) * 0.5f;
+  midline.start.resize(cycle.cycle_start.size());
+  for (size_t c = 0; c < cycle.cycle_start.size(); ++c) midline.start[c] = 2 * cycle.cycle_start[c];
+  const Clearance apart = tube_clearance(midline, 1, 1.0, false);
+  for (size_t r = 0; r < left.size(); ++r) thickness_limit[r] = std::min(thickness_limit[r], float(0.7 * apart.local[r]));
+  return thickness_limit;
+}
 
-  // Sections: a ribbon's rung (left, right); a wire's slab (left below, left above,
-  // right above, right below), which makes the faces point out of the slab.
-  const int32_t width = ribbon ? 2 : 4;
-  // The clearing rounds' factors (below): of the thickness, and of the width about the rung's midpoint.
-  // A ribbon of s or t = 1 covers the surface by design, its trapezoids meeting along
-  // the triangles' sides: that is not to be narrowed away.
-  const bool clearing = automatic || (ribbon && options.s < 1 && options.t < 1);
-  std::vector<float> thinned(clearing ? left.size() : 0, 1.0f), narrowed(thinned.size(), 1.0f);
-  auto control_positions = [&] {
-    std::vector<Vec3> positions;
-    positions.reserve(left.size() * size_t(width));
+// The sections of the control mesh: a ribbon's rung (left, right); a wire's slab (left
+// below, left above, right above, right below), which makes the faces point out of the
+// slab. The clearing rounds (clear_crossings) scale them per rung: `thinned` the
+// thickness, `narrowed` the width about the rung's midpoint.
+struct Sections {
+  const Rungs& rungs;
+  bool ribbon, automatic, clearing;
+  double thickness;              // VariableWireOptions::thickness
+  std::vector<float> limit;      // thickness_limits, for an automatic thickness
+  std::vector<float> thinned;    // per rung, when clearing
+  std::vector<float> narrowed;   // per rung, when clearing
+
+  int32_t width() const { return ribbon ? 2 : 4; }
+
+  float half_thickness(size_t rung) const {
+    if (!automatic) return float(thickness / 2);
+    return std::min(limit[rung], float(0.25 * norm(rungs.right[rung] - rungs.left[rung])));
+  }
+
+  // The control mesh's positions, width() per rung.
+  std::vector<Vec3> positions() const {
+    const std::vector<Vec3>& left = rungs.left;
+  const std::vector<Vec3>& right = rungs.right;
+  const std::vector<Vec3>& up = rungs.up;
+    std::vector<Vec3> out;
+    out.reserve(left.size() * size_t(width()));
     for (size_t r = 0; r < left.size(); ++r) {
       const float n = clearing ? narrowed[r] : 1.0f;
       const Vec3 mid = (left[r] + right[r]) * 0.5f, l = mid + (left[r] - mid) * n, rr = mid + (right[r] - mid) * n;
       if (ribbon) {
-        positions.insert(positions.end(), {l, rr});
+        out.insert(out.end(), {l, rr});
       } else {
         const Vec3 h = up[r] * (half_thickness(r) * (automatic ? thinned[r] : 1.0f));
-        positions.insert(positions.end(), {l - h, l + h, rr + h, rr - h});
+        out.insert(out.end(), {l - h, l + h, rr + h, rr - h});
       }
     }
-    return positions;
-  };
+    return out;
+  }
+};
+
+// The sections joined into one closed ring of quads per cycle.
+PolygonMesh control_mesh(const Sections& sections, const TriangleCycle& cycle, const Ladder& ladder) {
   PolygonMesh control;
-  control.positions = control_positions();
+  control.positions = sections.positions();
+  const int32_t width = sections.width();
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
     const int32_t first = 2 * cycle.cycle_start[size_t(c)], rungs = 2 * cycle.cycle_start[size_t(c) + 1] - first;
     // Where a Moebius cycle closes, left meets right: a ribbon's rung is reversed, a
     // slab turned by half a turn (both directions swap).
-    connect_rings(control, first * width, rungs, width, !ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
+    connect_rings(control, first * width, rungs, width, !sections.ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
   }
-  // Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
-  // better part of the time at 50k faces) only to copy it. The clearing rounds below keep
-  // the refined topology in `smoothing` once they need it (only then: it is large).
-  const SubdivideOptions smoothing_options{.levels = options.levels, .limit = true};
-  std::optional<CatmullClark> smoothing;
-  auto smoothed = [&] {
-    if (options.levels == 0) return split_quads(control, control.positions);
-    PolygonMesh smooth = smoothing ? smoothing->refine(control.positions) : subdivide(control, smoothing_options);
-    return split_quads(smooth, std::move(smooth.positions));
-  };
-  PolygonMesh wire = smoothed();
+  return control;
+}
 
-  // The limits above are local estimates, and the smoothing moves what they measured.
-  // An automatic thickness is then made good where the result still crosses itself:
-  // around each crossing the slabs are halved (and from the second time on, narrowed
-  // about their middle: where the strip bends across a sharp crease its sides fold
-  // however thin it is), the wire smoothed again and searched again where it changed,
-  // for a few rounds. A ribbon, which has no thickness, is narrowed from the first
-  // round: smoothing pulls the strips of neighbouring passes into each other at creases.
-  // What does not clear is reported as it is: mostly a surface that crosses itself, or
-  // slivers so flat that their slab folds in its own plane. Every control quad of a
-  // connector (a wire's ring has 4, a ribbon's 1) refines into 4^levels quads
-  // (OpenSubdiv numbers a face's children consecutively), each split in 2 triangles.
-  bool clear = false;
-  if (clearing) {
-    const int64_t faces_per_rung = int64_t(ribbon ? 1 : width) * 2 << (2 * options.levels);
-    auto step = [&](size_t rung, int delta) {
-      const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
-                            cycle.cycle_start.begin() - 1);
-      const int64_t first = 2 * int64_t(cycle.cycle_start[c]), rungs = 2 * int64_t(cycle.cycle_start[c + 1]) - first;
-      return size_t(first + ((int64_t(rung) - first + delta) % rungs + rungs) % rungs);
-    };
-    std::vector<uint8_t> changed; // per face of the wire: empty = search it all
-    size_t fewest = SIZE_MAX; // crossing faces, and the rounds since they were a tenth fewer
-    for (int round = 0, stalled = 0; round < 8 && stalled < 2; ++round) {
-      const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed);
-      if (crossing.empty()) {
-        clear = true;
-        break;
-      }
-      stalled = double(crossing.size()) < 0.9 * double(fewest) ? 0 : stalled + 1;
-      fewest = std::min(fewest, crossing.size());
-      // A connector's limit surface depends on its own two rungs and their neighbours.
-      std::vector<uint8_t> thin(thinned.size());
-      for (const int32_t f : crossing) {
-        const size_t rung = size_t(f / faces_per_rung);
-        for (int d = -1; d <= 2; ++d) thin[step(rung, d)] = 1;
-      }
-      // A rung halved four times and still crossing is given up (a crossing surface or a
-      // flat sliver, which no thickness clears): the rounds end when only those are left.
-      changed.assign(size_t(wire.num_faces()), 0);
-      bool any = false;
-      for (size_t r = 0; r < thinned.size(); ++r) {
-        if (!thin[r] || thinned[r] < 0.1f) continue;
-        any = true;
-        if (thinned[r] < 1 || ribbon) narrowed[r] *= 0.7f;
-        thinned[r] *= 0.5f;
-        for (int d = -2; d <= 2; ++d) {
-          const auto first = changed.begin() + int64_t(step(r, d)) * faces_per_rung;
-          std::fill(first, first + faces_per_rung, uint8_t(1));
-        }
-      }
-      if (!any) break;
-      control.positions = control_positions();
-      if (!smoothing && options.levels > 0) smoothing.emplace(control, smoothing_options);
-      wire = smoothed();
+// The wire from its control mesh: Catmull-Clark to the limit surface, its quads split.
+// Level 0 is the control mesh itself; OpenSubdiv would build its whole topology (the
+// better part of the time at 50k faces) only to copy it. `topology`, once the clearing
+// rounds keep it (only then: it is large), is the control mesh's refined topology.
+PolygonMesh smoothed(const PolygonMesh& control, const SubdivideOptions& options, const std::optional<CatmullClark>& topology) {
+  if (options.levels == 0) return split_quads(control, control.positions);
+  PolygonMesh smooth = topology ? topology->refine(control.positions) : subdivide(control, options);
+  return split_quads(smooth, std::move(smooth.positions));
+}
+
+// The limits above are local estimates, and the smoothing moves what they measured.
+// An automatic thickness is then made good where the result still crosses itself:
+// around each crossing the slabs are halved (and from the second time on, narrowed
+// about their middle: where the strip bends across a sharp crease its sides fold
+// however thin it is), the wire smoothed again and searched again where it changed,
+// for a few rounds. A ribbon, which has no thickness, is narrowed from the first
+// round: smoothing pulls the strips of neighbouring passes into each other at creases.
+// What does not clear is reported as it is: mostly a surface that crosses itself, or
+// slivers so flat that their slab folds in its own plane. Every control quad of a
+// connector (a wire's ring has 4, a ribbon's 1) refines into 4^levels quads
+// (OpenSubdiv numbers a face's children consecutively), each split in 2 triangles.
+// Updates `wire`, `control` and `sections`; returns whether the last search found the
+// wire clear.
+bool clear_crossings(PolygonMesh& wire, PolygonMesh& control, Sections& sections, const TriangleCycle& cycle,
+                     const SubdivideOptions& smoothing) {
+  const bool ribbon = sections.ribbon;
+  std::vector<float>& thinned = sections.thinned;
+  std::vector<float>& narrowed = sections.narrowed;
+  std::optional<CatmullClark> topology;
+  const int64_t faces_per_rung = int64_t(ribbon ? 1 : sections.width()) * 2 << (2 * smoothing.levels);
+  auto step = [&](size_t rung, int delta) {
+    const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
+                          cycle.cycle_start.begin() - 1);
+    const int64_t first = 2 * int64_t(cycle.cycle_start[c]), rungs = 2 * int64_t(cycle.cycle_start[c + 1]) - first;
+    return size_t(first + ((int64_t(rung) - first + delta) % rungs + rungs) % rungs);
+  };
+  std::vector<uint8_t> changed; // per face of the wire: empty = search it all
+  size_t fewest = SIZE_MAX; // crossing faces, and the rounds since they were a tenth fewer
+  for (int round = 0, stalled = 0; round < 8 && stalled < 2; ++round) {
+    const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed);
+    if (crossing.empty()) return true;
+    stalled = double(crossing.size()) < 0.9 * double(fewest) ? 0 : stalled + 1;
+    fewest = std::min(fewest, crossing.size());
+    // A connector's limit surface depends on its own two rungs and their neighbours.
+    std::vector<uint8_t> thin(thinned.size());
+    for (const int32_t f : crossing) {
+      const size_t rung = size_t(f / faces_per_rung);
+      for (int d = -1; d <= 2; ++d) thin[step(rung, d)] = 1;
     }
+    // A rung halved four times and still crossing is given up (a crossing surface or a
+    // flat sliver, which no thickness clears): the rounds end when only those are left.
+    changed.assign(size_t(wire.num_faces()), 0);
+    bool any = false;
+    for (size_t r = 0; r < thinned.size(); ++r) {
+      if (!thin[r] || thinned[r] < 0.1f) continue;
+      any = true;
+      if (thinned[r] < 1 || ribbon) narrowed[r] *= 0.7f;
+      thinned[r] *= 0.5f;
+      for (int d = -2; d <= 2; ++d) {
+        const auto first = changed.begin() + int64_t(step(r, d)) * faces_per_rung;
+        std::fill(first, first + faces_per_rung, uint8_t(1));
+      }
+    }
+    if (!any) break;
+    control.positions = sections.positions();
+    if (!topology && smoothing.levels > 0) topology.emplace(control, smoothing);
+    wire = smoothed(control, smoothing, topology);
   }
+  return false;
+}
+
+} // namespace
+
+VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
+  check_variable_options(cycle, options);
+  const bool ribbon = options.shape == WireShape::ribbon;
+  const Ladder ladder = make_ladder(quads, cycle);
+  const Rungs rungs = trapezoid_rungs(quads, cycle, ladder, options);
+  // Only a wire of automatic thickness has limits. A ribbon of s or t = 1 covers the
+  // surface by design, its trapezoids meeting along the triangles' sides: that is not to
+  // be narrowed away.
+  const bool automatic = !ribbon && options.thickness == 0;
+  const bool clearing = automatic || (ribbon && options.s < 1 && options.t < 1);
+  Sections sections{.rungs = rungs,
+                    .ribbon = ribbon,
+                    .automatic = automatic,
+                    .clearing = clearing,
+                    .thickness = options.thickness,
+                    .limit = automatic ? thickness_limits(quads, cycle, ladder, rungs) : std::vector<float>(),
+                    .thinned = std::vector<float>(clearing ? rungs.size() : 0, 1.0f),
+                    .narrowed = std::vector<float>(clearing ? rungs.size() : 0, 1.0f)};
+  PolygonMesh control = control_mesh(sections, cycle, ladder);
+  const SubdivideOptions smoothing{.levels = options.levels, .limit = true};
+  PolygonMesh wire = smoothed(control, smoothing, std::nullopt);
+  const bool clear = clearing && clear_crossings(wire, control, sections, cycle, smoothing);
   return {std::move(wire), clear};
 }
 

@@ -1,0 +1,76 @@
+// An Embree scene and the device it lives on, released together: what the renderer
+// (pictures) and the printability check (sculpture) build their ray and collision queries
+// on. Header-only and in no layer's folder, so that both layers share it without one
+// depending on the other; each links Embree itself. Internal to the library.
+#pragma once
+
+#include "meander/error.h"
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace meander {
+
+class EmbreeScene {
+public:
+  // A scene on a device of its own; `user` names the caller if Embree cannot start.
+  EmbreeScene(std::string_view user, RTCSceneFlags flags, RTCBuildQuality quality)
+      : user_(user), device_(rtcNewDevice(nullptr)) {
+    if (!device_) throw Error(user_ + ": cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    make_scene(flags, quality);
+  }
+
+  // A scene on the device of `same_device`: rtcCollide takes two scenes of one device.
+  EmbreeScene(const EmbreeScene& same_device, RTCSceneFlags flags, RTCBuildQuality quality)
+      : user_(same_device.user_), device_(same_device.device()) {
+    rtcRetainDevice(device());
+    make_scene(flags, quality);
+  }
+
+  RTCDevice device() const { return device_.get(); }
+  RTCScene scene() const { return scene_.get(); }
+
+  // Commits `geometry`, attaches it and lets the scene hold the only reference to it.
+  // Returns its geometry id.
+  unsigned attach(RTCGeometry geometry) {
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(scene(), geometry);
+    rtcReleaseGeometry(geometry);
+    return id;
+  }
+
+  // Builds the scene's tree, after every geometry is attached.
+  void commit() {
+    rtcCommitScene(scene());
+    throw_if_failed();
+  }
+
+  // Throws Error if an Embree call on the device failed since the last check (a tree
+  // that could not be built, for want of memory, would otherwise find nothing).
+  void throw_if_failed() const {
+    if (const RTCError error = rtcGetDeviceError(device()); error != RTC_ERROR_NONE)
+      throw Error(user_ + ": Embree failed (error " + std::to_string(int(error)) + ")");
+  }
+
+private:
+  void make_scene(RTCSceneFlags flags, RTCBuildQuality quality) {
+    scene_.reset(rtcNewScene(device()));
+    rtcSetSceneFlags(scene(), flags);
+    rtcSetSceneBuildQuality(scene(), quality);
+  }
+
+  struct DeviceRelease {
+    void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+  };
+  struct SceneRelease {
+    void operator()(RTCScene s) const { rtcReleaseScene(s); }
+  };
+  std::string user_;
+  std::unique_ptr<RTCDeviceTy, DeviceRelease> device_; // declared before the scene, released after it
+  std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
+};
+
+} // namespace meander
