@@ -422,7 +422,7 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
   ASSERT_EQ(files.size(), 2u);
   EXPECT_NE(files.at("pretzel_variable-wire.obj").find("mtllib pretzel_variable-wire.mtl"), std::string::npos);
   EXPECT_TRUE(files.contains("pretzel_variable-wire.mtl"));
-  EXPECT_EQ(studio_download(surface, wire, StudioFile::obj_zip, scratch, "b2").bytes, zip.bytes);
+  EXPECT_EQ(studio_download(surface, wire, StudioFile::obj_zip).bytes, zip.bytes);
   // The render as `meander wire --png` draws it: 1200 x 900, the copper wire covering a good part of it.
   const Texture picture = read_texture(studio_download(surface, wire, StudioFile::png).bytes, "render.png");
   EXPECT_EQ(picture.width, 1200);
