@@ -44,7 +44,7 @@ struct DefaultInitAllocator : std::allocator<T> {
     return static_cast<T*>(block);
   }
   void deallocate(T* p, size_t n) noexcept {
-    if (huge(n)) ::operator delete(p, n * sizeof(T), kHugePageAlignment);
+    if (huge(n)) ::operator delete(p, kHugePageAlignment); // unsized: clang before 19 has no sized delete by default
     else std::allocator<T>::deallocate(p, n);
   }
 

@@ -5,6 +5,7 @@
 #include "meander/textured_mesh.h"
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -63,5 +64,10 @@ struct NamedFile {
 // textures, or the one GLB), in memory, named as they would be: for a caller that sends
 // them on rather than to disk. Throws what write_textured_mesh throws but IOError.
 std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name);
+
+// The files in one zip archive in memory, stored (not compressed; Zip64 where a file or
+// the whole passes 4 GiB), through libzip: one download for a result of several files.
+// The same bytes for the same files. Throws IOError if libzip fails.
+std::string zip_archive(std::span<const NamedFile> files);
 
 } // namespace meander

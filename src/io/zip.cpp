@@ -1,4 +1,4 @@
-#include "io/zip.h"
+#include "meander/textured_io.h"
 
 #include "meander/error.h"
 
@@ -6,7 +6,7 @@
 
 #include <memory>
 
-namespace meander::io {
+namespace meander {
 
 namespace {
 
@@ -23,7 +23,7 @@ struct ArchiveDiscard {
 
 } // namespace
 
-std::string zip_stored(std::span<const ZipEntry> entries) {
+std::string zip_archive(std::span<const NamedFile> entries) {
   struct ErrorScope {
     zip_error_t error;
     ErrorScope() { zip_error_init(&error); }
@@ -38,7 +38,7 @@ std::string zip_stored(std::span<const ZipEntry> entries) {
     zip_source_free(buffer.get()); // the reference zip_open_from_source did not take
     fail("open", &opening.error);
   }
-  for (const ZipEntry& e : entries) {
+  for (const NamedFile& e : entries) {
     // Read at zip_close, while the entries are still alive.
     zip_source_t* source = zip_source_buffer(archive.get(), e.bytes.data(), e.bytes.size(), 0);
     const zip_int64_t index = source ? zip_file_add(archive.get(), e.name.c_str(), source, ZIP_FL_ENC_UTF_8) : -1;
@@ -67,4 +67,4 @@ std::string zip_stored(std::span<const ZipEntry> entries) {
   return out;
 }
 
-} // namespace meander::io
+} // namespace meander

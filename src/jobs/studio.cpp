@@ -1,7 +1,6 @@
 #include "meander/studio.h"
 
 #include "io/binary.h"
-#include "io/zip.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/parameters.h"
@@ -528,9 +527,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
       files = textured_mesh_files({.mesh = result.mesh, .appearance = std::move(appearance)}, base + ".obj");
     }
     std::sort(files.begin(), files.end(), [](const NamedFile& a, const NamedFile& b) { return a.name < b.name; });
-    std::vector<io::ZipEntry> entries;
-    for (NamedFile& f : files) entries.push_back({std::move(f.name), std::move(f.bytes)});
-    return {io::zip_stored(entries), "application/zip", base + ".zip"};
+    return {zip_archive(files), "application/zip", base + ".zip"};
   }
   case StudioFile::svg: return {polylines_file_bytes(result.curve.curves, base + ".svg"), "image/svg+xml", base + ".svg"};
   case StudioFile::png: {
