@@ -346,5 +346,15 @@ TEST(Image, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefused) {
   EXPECT_THROW(read_texture("P6\n4000 4000\n255\n" + std::string(64, '\0'), "big.ppm"), InputError);
 }
 
+// An empty IDAT chunk holds nothing: the picture reads as without it (stb_image copied
+// one from a null buffer when it came first, found by fuzz_image).
+TEST(Image, EmptyPngDataChunksAreSkipped) {
+  const Image image{.width = 2, .height = 2, .has_alpha = true, .rgba = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}};
+  std::string png = png_file_bytes(image);
+  const size_t idat = png.find("IDAT") - 4;
+  png.insert(idat, std::string("\0\0\0\0IDAT\0\0\0\0", 12));
+  EXPECT_EQ(read_texture(png, "empty_idat.png").rgba, image.rgba);
+}
+
 } // namespace
 } // namespace meander

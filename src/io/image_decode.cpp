@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 // Only memory is decoded: files are read (and their errors reported) by Meander.
@@ -50,22 +51,28 @@ Texture decode_jpeg(std::string_view bytes, std::string_view name) {
   return texture;
 }
 
-// Whether every chunk of a PNG fits in the bytes that follow its header: stb_image trusts
-// an IDAT's length and allocates it before reading (1.7 GB for a 100-byte file, found by
-// fuzz_image). The chunk walk stops at IEND; what follows it is ignored, as by stb.
-bool png_chunks_fit(std::string_view bytes) {
+// The PNG as stb_image should see it, or nothing if a chunk is longer than the bytes
+// after its header: stb trusts an IDAT's length and allocates it before reading (1.7 GB
+// for a 100-byte file), and copies an empty first IDAT from a null buffer (undefined
+// behaviour), both found by fuzz_image; empty IDAT chunks hold nothing and are left out.
+// The walk stops at IEND; what follows it is ignored, as by stb.
+std::optional<std::string> png_for_stb(std::string_view bytes) {
   const auto be32 = [&](size_t at) {
     uint32_t v = 0;
     for (size_t k = 0; k < 4; ++k) v = v << 8 | uint8_t(bytes[at + k]);
     return v;
   };
-  for (size_t at = 8; at + 12 <= bytes.size();) {
+  std::string kept(bytes.substr(0, 8));
+  size_t at = 8;
+  while (at + 12 <= bytes.size()) {
     const uint64_t length = be32(at);
-    if (length > bytes.size() - at - 12) return false;
-    if (bytes.substr(at + 4, 4) == "IEND") return true;
+    if (length > bytes.size() - at - 12) return std::nullopt;
+    const std::string_view type = bytes.substr(at + 4, 4);
+    if (length > 0 || type != "IDAT") kept += bytes.substr(at, 12 + length);
     at += 12 + length;
+    if (type == "IEND") return kept;
   }
-  return true; // truncated: stb says so
+  return kept += bytes.substr(at); // truncated: stb says so
 }
 
 // Whether the pixels the header of an uncompressed image claims fit in its bytes, and
@@ -91,8 +98,13 @@ bool claimed_pixels_fit(std::string_view bytes, int width, int height) {
 Texture decode_image(std::string_view bytes, std::string_view name) {
   if (bytes.size() > size_t(INT_MAX)) fail_input(name, "cannot decode image: file too large");
   if (bytes.starts_with("\xFF\xD8")) return decode_jpeg(bytes, name);
-  if (bytes.starts_with("\x89PNG\r\n\x1A\n") && !png_chunks_fit(bytes))
-    fail_input(name, "cannot decode image: a PNG chunk is longer than the file");
+  std::string png;
+  if (bytes.starts_with("\x89PNG\r\n\x1A\n")) {
+    std::optional<std::string> chunks = png_for_stb(bytes);
+    if (!chunks) fail_input(name, "cannot decode image: a PNG chunk is longer than the file");
+    png = std::move(*chunks);
+    bytes = png;
+  }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int width = 0, height = 0, channels = 0;
