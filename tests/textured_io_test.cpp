@@ -344,6 +344,10 @@ TEST(Image, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefused) {
   EXPECT_EQ(small.width, 2);
   EXPECT_EQ(small.height, 3);
   EXPECT_THROW(read_texture("P6\n4000 4000\n255\n" + std::string(64, '\0'), "big.ppm"), InputError);
+  // A PNM number stb_image would overflow (found by fuzz_image); a small PNM is read.
+  EXPECT_THAT(test::message_of<InputError>([] { read_texture("P6 5555555555 1 255\n", "huge.ppm"); }),
+              testing::HasSubstr("huge.ppm: cannot decode image: a number of the PNM header has more than 9 digits"));
+  EXPECT_EQ(read_texture("P6 # two pixels\n2 1 255\n" + std::string(6, '\x40'), "small.ppm").width, 2);
 }
 
 // An empty IDAT chunk holds nothing: the picture reads as without it (stb_image copied

@@ -3,6 +3,7 @@
 
 #include <turbojpeg.h>
 
+#include <cctype>
 #include <climits>
 #include <cstdint>
 #include <memory>
@@ -75,6 +76,27 @@ std::optional<std::string> png_for_stb(std::string_view bytes) {
   return kept += bytes.substr(at); // truncated: stb says so
 }
 
+// Whether the numbers of a PNM header (P5, P6: width, height, largest value) have at most
+// 9 digits: stb_image reads them into an int without a bound (a signed overflow, undefined
+// behaviour, found by fuzz_image).
+bool pnm_numbers_fit(std::string_view bytes) {
+  size_t at = 2;
+  for (int numbers = 0; numbers < 3 && at < bytes.size();) {
+    if (bytes[at] == '#') {
+      while (at < bytes.size() && bytes[at] != '\n' && bytes[at] != '\r') ++at;
+    } else if (std::isspace(static_cast<unsigned char>(bytes[at]))) {
+      ++at;
+    } else {
+      size_t digits = 0;
+      for (; at < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[at])); ++at) ++digits;
+      if (digits == 0) return true; // not a number: stb refuses the header
+      if (digits > 9) return false;
+      ++numbers;
+    }
+  }
+  return true;
+}
+
 // Whether the pixels the header of an uncompressed image claims fit in its bytes, and
 // those of a run-length TGA in 128 pixels a byte: stb_image allocates the whole picture
 // before reading it (1.6 GB for a 32-byte TGA claiming 15360 x 15360 pixels, found by
@@ -105,6 +127,8 @@ Texture decode_image(std::string_view bytes, std::string_view name) {
     png = std::move(*chunks);
     bytes = png;
   }
+  if ((bytes.starts_with("P5") || bytes.starts_with("P6")) && !pnm_numbers_fit(bytes))
+    fail_input(name, "cannot decode image: a number of the PNM header has more than 9 digits");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int width = 0, height = 0, channels = 0;
