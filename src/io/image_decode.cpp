@@ -53,8 +53,8 @@ Texture decode_jpeg(std::string_view bytes, std::string_view name) {
 }
 
 // The PNG as stb_image should see it, or nothing if a chunk is longer than the bytes
-// after its header: stb trusts an IDAT's length and allocates it before reading (1.7 GB
-// for a 100-byte file), and copies an empty first IDAT from a null buffer (undefined
+// after its header, the last one included: stb trusts an IDAT's length and allocates it
+// before reading (1.7 GB for a 100-byte file, 1 GB for a 43-byte one), and copies an empty first IDAT from a null buffer (undefined
 // behaviour), both found by fuzz_image; empty IDAT chunks hold nothing and are left out.
 // The walk stops at IEND; what follows it is ignored, as by stb.
 std::optional<std::string> png_for_stb(std::string_view bytes) {
@@ -65,15 +65,15 @@ std::optional<std::string> png_for_stb(std::string_view bytes) {
   };
   std::string kept(bytes.substr(0, 8));
   size_t at = 8;
-  while (at + 12 <= bytes.size()) {
+  while (at + 8 <= bytes.size()) {
     const uint64_t length = be32(at);
-    if (length > bytes.size() - at - 12) return std::nullopt;
+    if (length + 12 > bytes.size() - at) return std::nullopt; // the last one cut short too
     const std::string_view type = bytes.substr(at + 4, 4);
     if (length > 0 || type != "IDAT") kept += bytes.substr(at, 12 + length);
     at += 12 + length;
     if (type == "IEND") return kept;
   }
-  return kept += bytes.substr(at); // truncated: stb says so
+  return kept += bytes.substr(at); // less than a chunk's header: stb says the file is cut
 }
 
 // Whether the numbers of a PNM header (P5, P6: width, height, largest value) have at most
