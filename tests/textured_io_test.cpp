@@ -348,6 +348,9 @@ TEST(Image, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefused) {
   EXPECT_THAT(test::message_of<InputError>([] { read_texture("P6 5555555555 1 255\n", "huge.ppm"); }),
               testing::HasSubstr("huge.ppm: cannot decode image: a number of the PNM header has more than 9 digits"));
   EXPECT_EQ(read_texture("P6 # two pixels\n2 1 255\n" + std::string(6, '\x40'), "small.ppm").width, 2);
+  // 16-bit samples, which stb_image converts past its buffer (found by fuzz_image).
+  EXPECT_THAT(test::message_of<InputError>([] { read_texture("P6 2 1 876\n" + std::string(12, 'c'), "deep.ppm"); }),
+              testing::HasSubstr("deep.ppm: cannot decode image: 16-bit PNM samples are not supported"));
 }
 
 // An empty IDAT chunk holds nothing: the picture reads as without it (stb_image copied

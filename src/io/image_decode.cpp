@@ -76,11 +76,13 @@ std::optional<std::string> png_for_stb(std::string_view bytes) {
   return kept += bytes.substr(at); // less than a chunk's header: stb says the file is cut
 }
 
-// Whether the numbers of a PNM header (P5, P6: width, height, largest value) have at most
-// 9 digits: stb_image reads them into an int without a bound (a signed overflow, undefined
-// behaviour, found by fuzz_image).
-bool pnm_numbers_fit(std::string_view bytes) {
+// Why stb_image must not be given a PNM (P5, P6), or "": a header number of more than 9
+// digits, which it reads into an int without a bound (a signed overflow), or 16-bit
+// samples (a largest value over 255), which it converts past the end of its buffer; both
+// found by fuzz_image.
+std::string pnm_refusal(std::string_view bytes) {
   size_t at = 2;
+  uint64_t number = 0;
   for (int numbers = 0; numbers < 3 && at < bytes.size();) {
     if (bytes[at] == '#') {
       while (at < bytes.size() && bytes[at] != '\n' && bytes[at] != '\r') ++at;
@@ -88,13 +90,14 @@ bool pnm_numbers_fit(std::string_view bytes) {
       ++at;
     } else {
       size_t digits = 0;
-      for (; at < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[at])); ++at) ++digits;
-      if (digits == 0) return true; // not a number: stb refuses the header
-      if (digits > 9) return false;
-      ++numbers;
+      for (number = 0; at < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[at])); ++at, ++digits)
+        if (digits < 10) number = number * 10 + uint64_t(bytes[at] - '0');
+      if (digits == 0) return ""; // not a number: stb refuses the header
+      if (digits > 9) return "a number of the PNM header has more than 9 digits";
+      if (++numbers == 3 && number > 255) return "16-bit PNM samples are not supported";
     }
   }
-  return true;
+  return "";
 }
 
 // Whether the pixels the header of an uncompressed image claims fit in its bytes, and
@@ -127,8 +130,8 @@ Texture decode_image(std::string_view bytes, std::string_view name) {
     png = std::move(*chunks);
     bytes = png;
   }
-  if ((bytes.starts_with("P5") || bytes.starts_with("P6")) && !pnm_numbers_fit(bytes))
-    fail_input(name, "cannot decode image: a number of the PNM header has more than 9 digits");
+  if (bytes.starts_with("P5") || bytes.starts_with("P6"))
+    if (const std::string refusal = pnm_refusal(bytes); !refusal.empty()) fail_input(name, "cannot decode image: " + refusal);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int width = 0, height = 0, channels = 0;
