@@ -1,4 +1,4 @@
-// An Embree scene and the device it lives on, released together: what the renderer
+// An Embree scene on the process's Embree device: what the renderer
 // (pictures) and the printability check (sculpture) build their ray and collision queries
 // on. Header-only and in no layer's folder, so that both layers share it without one
 // depending on the other; each links Embree itself. Internal to the library.
@@ -16,18 +16,14 @@ namespace meander {
 
 class EmbreeScene {
 public:
-  // A scene on a device of its own; `user` names the caller if Embree cannot start.
-  EmbreeScene(std::string_view user, RTCSceneFlags flags, RTCBuildQuality quality)
-      : user_(user), device_(rtcNewDevice(nullptr)) {
+  // A scene on the process's one device; `user` names the caller if Embree cannot start.
+  EmbreeScene(std::string_view user, RTCSceneFlags flags, RTCBuildQuality quality) : user_(user) {
+    device_.reset(shared_device());
     if (!device_) throw Error(user_ + ": cannot start Embree (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
-    make_scene(flags, quality);
-  }
-
-  // A scene on the device of `same_device`: rtcCollide takes two scenes of one device.
-  EmbreeScene(const EmbreeScene& same_device, RTCSceneFlags flags, RTCBuildQuality quality)
-      : user_(same_device.user_), device_(same_device.device()) {
     rtcRetainDevice(device());
-    make_scene(flags, quality);
+    scene_.reset(rtcNewScene(device()));
+    rtcSetSceneFlags(scene(), flags);
+    rtcSetSceneBuildQuality(scene(), quality);
   }
 
   RTCDevice device() const { return device_.get(); }
@@ -56,10 +52,12 @@ public:
   }
 
 private:
-  void make_scene(RTCSceneFlags flags, RTCBuildQuality quality) {
-    scene_.reset(rtcNewScene(device()));
-    rtcSetSceneFlags(scene(), flags);
-    rtcSetSceneBuildQuality(scene(), quality);
+  // Made once and kept for the process: a device costs far more to make than a small
+  // scene (a brute-force check of 180,000 two-triangle meshes spent its time there), and
+  // rtcCollide takes two scenes of one device. Errors are kept per thread on it.
+  static RTCDevice shared_device() {
+    static const RTCDevice device = rtcNewDevice(nullptr);
+    return device;
   }
 
   struct DeviceRelease {

@@ -604,7 +604,7 @@ std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<
     if (!chosen.empty()) {
       const std::vector<Box> tested_boxes = triangle_boxes(mesh, tris, tested), chosen_boxes = triangle_boxes(mesh, tris, chosen);
       EmbreeScene tested_scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
-      EmbreeScene chosen_scene(tested_scene, RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+      EmbreeScene chosen_scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
       add_boxes(tested_scene, tested_boxes);
       add_boxes(chosen_scene, chosen_boxes);
       for_each_overlapping(tested_scene, tested_boxes, chosen_scene, chosen_boxes, [&](int32_t a, int32_t k) {
