@@ -316,6 +316,13 @@ void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F
   std::vector<int32_t> all(tris.corners.size());
   std::iota(all.begin(), all.end(), 0);
   const std::vector<Box> boxes = triangle_boxes(mesh, tris, all);
+  // A few triangles: every pair, cheaper than building any tree.
+  if (constexpr size_t few = 16; boxes.size() <= few) {
+    for (size_t i = 0; i < boxes.size(); ++i)
+      for (size_t j = i + 1; j < boxes.size(); ++j)
+        if (boxes[i].overlaps(boxes[j])) f(int32_t(i), int32_t(j));
+    return;
+  }
   EmbreeScene scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
   add_boxes(scene, boxes);
   for_each_overlapping(scene, boxes, scene, boxes, f);
