@@ -2,6 +2,7 @@
 // Plain structs of flat arrays with int32 index handles; no pointers between elements.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -9,25 +10,33 @@
 
 namespace meander {
 
-// Positions are float: every common mesh format stores float32, and it halves the
-// memory of the largest arrays. Geometry that needs precision promotes to double.
-struct Vec3 {
-  float x = 0, y = 0, z = 0;
+// One vector type in two precisions. Positions are Vec3 (float): every common mesh
+// format stores float32, and it halves the memory of the largest arrays. Geometry whose
+// results must not depend on float rounding (printability's exact signs, the renderer's
+// camera, subdivision's deep levels) works in Vec3d, to which every Vec3 converts exactly.
+template <class T> struct Vec3T {
+  T x = 0, y = 0, z = 0;
 
-  friend Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-  friend Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-  friend Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-  friend Vec3 operator*(float s, Vec3 a) { return a * s; }
-  friend bool operator==(Vec3 a, Vec3 b) = default;
+  friend Vec3T operator+(Vec3T a, Vec3T b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend Vec3T operator-(Vec3T a, Vec3T b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend Vec3T operator*(Vec3T a, T s) { return {a.x * s, a.y * s, a.z * s}; }
+  friend Vec3T operator*(T s, Vec3T a) { return a * s; }
+  friend bool operator==(Vec3T a, Vec3T b) = default;
 };
+using Vec3 = Vec3T<float>;
+using Vec3d = Vec3T<double>;
 
-inline double dot(Vec3 a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
-inline Vec3 cross(Vec3 a, Vec3 b) {
-  return {float(double(a.y) * b.z - double(a.z) * b.y), float(double(a.z) * b.x - double(a.x) * b.z),
-          float(double(a.x) * b.y - double(a.y) * b.x)};
+inline Vec3d to_double(Vec3 p) { return {p.x, p.y, p.z}; }
+inline Vec3 to_float(Vec3d p) { return {float(p.x), float(p.y), float(p.z)}; }
+
+// Products in double whatever T is.
+template <class T> double dot(Vec3T<T> a, Vec3T<T> b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
+template <class T> Vec3T<T> cross(Vec3T<T> a, Vec3T<T> b) {
+  return {T(double(a.y) * b.z - double(a.z) * b.y), T(double(a.z) * b.x - double(a.x) * b.z),
+          T(double(a.x) * b.y - double(a.y) * b.x)};
 }
-inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
-inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+template <class T> double norm(Vec3T<T> a) { return std::sqrt(dot(a, a)); }
+template <class T> bool is_finite(Vec3T<T> a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
 struct Box3 {
   Vec3 min{INFINITY, INFINITY, INFINITY};
@@ -35,6 +44,9 @@ struct Box3 {
   void extend(Vec3 p);
   bool empty() const { return min.x > max.x; }
   double diagonal() const { return empty() ? 0.0 : norm(max - min); }
+  double largest_side() const {
+    return empty() ? 0.0 : std::max({double(max.x) - min.x, double(max.y) - min.y, double(max.z) - min.z});
+  }
 };
 Box3 bounding_box(std::span<const Vec3> points);
 

@@ -2,7 +2,6 @@
 
 #include "meander/error.h"
 #include "meander/io.h"
-#include "core/vec3d.h"
 #include "embree/embree_scene.h"
 
 #include <embree3/rtcore.h>
@@ -23,7 +22,7 @@ constexpr double pi = 3.14159265358979323846;
 
 // Positions, directions and linear colours in double (Vec3d).
 Vec3d normalized(Vec3d a) {
-  const double n = std::sqrt(dot(a, a));
+  const double n = norm(a);
   return n > 0 ? a * (1 / n) : Vec3d{0, 0, 0};
 }
 // A colour filtered by another, channel by channel.

@@ -2,7 +2,6 @@
 
 #include "meander/check.h"
 #include "meander/error.h"
-#include "core/vec3d.h"
 #include "embree/embree_scene.h"
 
 #include <embree3/rtcore.h>
@@ -437,7 +436,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
         const Vec3d corner[3] = {to_double(mesh.positions[size_t(t[0])]), to_double(mesh.positions[size_t(t[1])]),
                               to_double(mesh.positions[size_t(t[2])])};
         Vec3d n = cross(corner[1] - corner[0], corner[2] - corner[0]);
-        const double length = std::sqrt(dot(n, n));
+        const double length = norm(n);
         flat[j] = length == 0;
         if (flat[j]) continue;
         n = {n.x / length, n.y / length, n.z / length};
@@ -445,7 +444,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
         // faces around the vertex are triangulated (a cube's corner gets its diagonal).
         for (int k = 0; k < 3; ++k) {
           const Vec3d e1 = corner[(k + 1) % 3] - corner[k], e2 = corner[(k + 2) % 3] - corner[k];
-          const double angle = std::atan2(std::sqrt(dot(cross(e1, e2), cross(e1, e2))), dot(e1, e2));
+          const double angle = std::atan2(norm(cross(e1, e2)), dot(e1, e2));
           weighted[j][size_t(k)] = Vec3{float(angle * n.x), float(angle * n.y), float(angle * n.z)};
         }
       }

@@ -1,7 +1,6 @@
 #include "meander/subdivide.h"
 
 #include "meander/error.h"
-#include "core/vec3d.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
