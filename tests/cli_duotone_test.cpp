@@ -7,6 +7,7 @@
 #include "meander/check.h"
 #include "meander/connectivity.h"
 #include "meander/io.h"
+#include "meander/remesh.h"
 #include "meander/textured_io.h"
 
 #include <gmock/gmock.h>

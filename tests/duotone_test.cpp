@@ -7,6 +7,7 @@
 #include "meander/connectivity.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/remesh.h"
 #include "meander/shapes.h"
 #include "meander/subdivide.h"
 
@@ -359,12 +360,12 @@ TEST(Duotone, RegionsAreManifoldsCutExactlyAlongTheCurve) {
         EXPECT_EQ(report.non_manifold_edges, 0) << c.name << " region " << r;
         EXPECT_EQ(report.non_manifold_vertices, 0) << c.name << " region " << r;
         EXPECT_EQ(report.components.size(), size_t(c.components)) << c.name << " region " << r;
-        regions_area += test::surface_area(regions[size_t(r)]);
+        regions_area += surface_area(regions[size_t(r)]);
         std::set<Segment> expected = curve_segments;
         if (r == 0) expected.insert(surface_boundary.begin(), surface_boundary.end());
         EXPECT_TRUE(boundary_segments(regions[size_t(r)]) == expected) << c.name << " region " << r;
       }
-      EXPECT_NEAR(regions_area, test::surface_area(duotone_surface(d, {.texture_size = 64}).mesh), 1e-5 * regions_area) << c.name;
+      EXPECT_NEAR(regions_area, surface_area(duotone_surface(d, {.texture_size = 64}).mesh), 1e-5 * regions_area) << c.name;
     }
 }
 

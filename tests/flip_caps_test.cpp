@@ -4,6 +4,7 @@
 
 #include "meander/check.h"
 #include "meander/io.h"
+#include "meander/remesh.h"
 #include "meander/shapes.h"
 
 #include <gtest/gtest.h>

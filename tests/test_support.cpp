@@ -103,16 +103,6 @@ CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64
   return result;
 }
 
-double surface_area(const PolygonMesh& m) {
-  double a = 0;
-  for (int32_t f = 0; f < m.num_faces(); ++f) {
-    const auto v = m.face(f);
-    for (size_t k = 1; k + 1 < v.size(); ++k)
-      a += 0.5 * norm(cross(m.positions[size_t(v[k])] - m.positions[size_t(v[0])], m.positions[size_t(v[k + 1])] - m.positions[size_t(v[0])]));
-  }
-  return a;
-}
-
 std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f) {
   const auto v = mesh.face(f);
   std::array<double, 3> angles{};

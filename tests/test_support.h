@@ -18,9 +18,6 @@ namespace meander::test {
 // ../shared/meshes (set by CMake); tests that need it skip when it is absent.
 std::filesystem::path shared_meshes();
 
-// The area of a polygon mesh, each face fanned from its first vertex.
-double surface_area(const PolygonMesh& mesh);
-
 // The angles of triangle f at its three corners, in degrees.
 std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f);
 

@@ -38,15 +38,15 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
     using T = std::decay_t<decltype(value)>;
     const std::string name = option_name(p.name);
     std::string help(p.help);
-    if (std::isfinite(p.max)) help += " (" + parameter_text(p.min) + ".." + parameter_text(p.max) + ")";
-    else if (std::isfinite(p.min)) help += " (>= " + parameter_text(p.min) + ")";
+    if (std::isfinite(p.max)) help += " (" + parameter_text(p, p.min) + ".." + parameter_text(p, p.max) + ")";
+    else if (std::isfinite(p.min)) help += " (>= " + parameter_text(p, p.min) + ")";
     if constexpr (std::is_same_v<T, bool>) {
       app.add_flag(name, value, help);
       return;
     }
     CLI::Option* option = app.add_option_function<std::string>(
         name, [&p, &value](const std::string& text) { set_parameter(p, text, value); }, help);
-    option->default_str(parameter_text(value));
+    option->default_str(parameter_text(p, value));
     std::string type;
     if constexpr (std::is_enum_v<T>) {
       for (std::string_view choice : p.choices) type += (type.empty() ? "{" : ",") + std::string(choice);
@@ -54,7 +54,7 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
     } else if constexpr (std::is_arithmetic_v<T>) {
       type = std::is_integral_v<T> ? "INT" : "FLOAT";
     } else {
-      type = p.choices.empty() ? "TEXT" : "FLOAT|" + std::string(p.choices[0]); // radius: a number or auto
+      type = p.choices.empty() ? "TEXT" : "FLOAT|" + std::string(p.choices[0]); // radius, spacing: a number or a word
     }
     option->type_name(type);
   });
@@ -65,7 +65,7 @@ template void add_parameters(CLI::App&, WireJob&);
 template void add_parameters(CLI::App&, DuotoneJob&);
 
 void add_max_faces(CLI::App& app, int64_t& max_faces) {
-  app.add_option("--max-faces", max_faces, "refuse an input of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  app.add_option("--max-faces", max_faces, "refuse an input, or a surface remeshed to --spacing, of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
 }
 
 bool reorders(const CurveJob& job) { return job.quadrangulation != Quadrangulation::none; }

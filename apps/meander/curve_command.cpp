@@ -23,6 +23,7 @@ struct CurveArgs {
 
 void run_curve(const CurveArgs& a) {
   CurveJob job = a.job;
+  job.max_faces = a.max_faces;
   check_parameters(job);
   // Only the picture needs the curve's points in memory; otherwise they are sampled as
   // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).

@@ -37,7 +37,8 @@ std::array<std::string, 2> region_paths(const std::string& text) {
 constexpr double kBytesPerQuad = 480;
 
 void run_duotone(const DuotoneArgs& a) {
-  const DuotoneJob& job = a.job;
+  DuotoneJob job = a.job;
+  job.max_faces = a.max_faces;
   check_parameters(job);
   require_output_path(a.output, {".obj", ".glb"}, "-o");
   if (!a.curve.empty()) require_output_path(a.curve, {".obj", ".ply", ".json", ".svg"}, "--curve");
@@ -52,7 +53,7 @@ void run_duotone(const DuotoneArgs& a) {
   StageLog log(a.verbose);
   const RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces});
   log.restart();
-  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, job.duotone); });
+  const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, job); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());
   log.lap("duotone");
   const auto quads_at = [&](int levels) { return double(duotone.quads.num_quads()) * std::pow(4.0, levels); };

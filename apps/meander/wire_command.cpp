@@ -34,7 +34,7 @@ void require_memory_for(const WireArgs& a, int64_t cycle_triangles) {
   const WireJob& job = a.job;
   const int64_t triangles = wire_triangles(cycle_triangles, job);
   const auto what = [&] {
-    return "the " + parameter_text(job.method) + " " + parameter_text(job.shape) + " would have " + std::to_string(triangles) +
+    return "the " + parameter_text(parameters::method, job.method) + " " + parameter_text(parameters::shape, job.shape) + " would have " + std::to_string(triangles) +
            " triangles";
   };
   const auto advice = [&](double memory) -> std::string {
@@ -54,7 +54,8 @@ void require_memory_for(const WireArgs& a, int64_t cycle_triangles) {
 void run_wire(const WireArgs& a) {
   const WireJob& job = a.job;
   check_parameters(job);
-  const CurveJob curve_job = wire_curve_job(job);
+  CurveJob curve_job = wire_curve_job(job);
+  curve_job.max_faces = a.max_faces;
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -89,7 +90,7 @@ void run_wire(const WireArgs& a) {
     log.lap("render png");
   }
   std::string summary = a.output + ": " + printability_summary(report);
-  if (job.method == WireMethod::constant) summary += " Radius " + std::to_string(wire.radius) + (job.radius ? "." : " (auto).");
+  if (job.method == WireMethod::constant) summary += " Radius " + parameter_text(parameters::radius, wire.radius) + (job.radius ? "." : " (auto).");
   if (!wire.surface_crossings.empty())
     summary += " Note: the surface itself crosses itself (" + std::to_string(wire.surface_crossings.size()) +
                " of the cycle's triangles, e.g. number " + std::to_string(wire.surface_crossings.front()) +

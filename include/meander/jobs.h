@@ -71,12 +71,20 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
 std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob& job);
 
 struct DuotoneJob {
+  // Set: the duotone is made on the surface remeshed evenly so that the separating
+  // curve's neighbouring passes lie about this far apart (remesh_to_spacing).
+  std::optional<double> spacing;
+  int64_t max_faces = 0; // with spacing: as CurveJob::max_faces
   DuotoneOptions duotone;
   TileOptions tiles;
   int subdivide = 0; // Catmull-Clark levels of the painted surface
 };
 
-// The duotone make_duotone(mesh, connectivity, job.duotone) made, painted with
+// make_duotone(mesh, connectivity, job.duotone), on the remeshed surface with job.spacing
+// (its vertices on the input surface). Throws what remesh_to_spacing and make_duotone throw.
+Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job);
+
+// The duotone make_duotone(mesh, connectivity, job) made, painted with
 // job.tiles and subdivided job.subdivide levels. `atlas`, if not empty, is
 // duotone_atlas(job.tiles) already made. Throws ParameterError for values out of range,
 // and what duotone_surface and subdivide throw. Appends to `times` if given.

@@ -27,12 +27,13 @@ struct Parameter {
 
 // The value of parameter p from text, as the CLI gets it and the studio gets names:
 // throws ParameterError naming p ("samples: expected an integer in [1, 1000], got 0").
-// T is int, uint64_t, double, bool, one of the jobs' enums, std::optional<double>
-// (radius: a positive number or "auto") or std::array<Color8, 2> (colors).
+// T is int, uint64_t, double, bool, one of the jobs' enums, std::optional<double> (a
+// positive number, or p's one choice for none: radius "auto", spacing "none") or
+// std::array<Color8, 2> (colors).
 template <class T> void set_parameter(const Parameter& p, std::string_view text, T& value);
 
-// A value as set_parameter reads it: the default shown in help texts.
-template <class T> std::string parameter_text(const T& value);
+// A value of parameter p as set_parameter reads it: the default shown in help texts.
+template <class T> std::string parameter_text(const Parameter& p, const T& value);
 
 // Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
 void check_parameter(const Parameter& p, double value, bool integer);
@@ -55,6 +56,7 @@ inline constexpr std::string_view smooth_choices[] = {"bspline", "catmull-rom", 
 inline constexpr std::string_view method_choices[] = {"constant", "variable"};
 inline constexpr std::string_view shape_choices[] = {"wire", "ribbon"};
 inline constexpr std::string_view radius_choices[] = {"auto"};
+inline constexpr std::string_view spacing_choices[] = {"none"};
 inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
 inline constexpr std::string_view rule_choices[] = {"tree", "flip"};
 inline constexpr std::string_view tiles_choices[] = {"truchet", "outline", "triangles", "stripes", "dots"};
@@ -67,6 +69,10 @@ inline constexpr Parameter tree{.name = "tree",
 inline constexpr Parameter seed{.name = "seed", .help = "random seed (same seed, same output)"};
 inline constexpr Parameter smooth{.name = "smooth", .help = "smoothing of the control polygon", .choices = smooth_choices};
 inline constexpr Parameter samples{.name = "samples", .help = "points per control polygon segment", .min = 1, .max = 1000};
+inline constexpr Parameter spacing{.name = "spacing",
+                                   .help = "the distance between neighbouring passes of the curve, in mesh units: the "
+                                           "surface is first remeshed evenly to it (none: the mesh's own edges)",
+                                   .choices = spacing_choices};
 
 inline constexpr Parameter method{.name = "method",
                                   .help = "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
@@ -124,6 +130,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
   using Plain = std::remove_const_t<Job>;
   static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob>);
   if constexpr (std::is_same_v<Plain, CurveJob>) {
+    visit(parameters::spacing, job.spacing);
     visit(parameters::quad, job.quadrangulation);
     visit(parameters::tree, job.cycle.tree);
     visit(parameters::seed, job.cycle.seed);
@@ -143,6 +150,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::levels, job.levels);
     visit(parameters::min_thickness, job.min_thickness);
   } else {
+    visit(parameters::spacing, job.spacing);
     visit(parameters::duotone_quad, job.duotone.quadrangulation);
     visit(parameters::rule, job.duotone.rule);
     visit(parameters::duotone_tree, job.duotone.tree);

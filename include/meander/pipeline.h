@@ -28,6 +28,12 @@ struct SlabMeshOptions {
 };
 
 struct CurveJob {
+  // Set: the surface is first remeshed evenly (remesh_to_spacing) so that neighbouring
+  // passes of the curve lie about this far apart, and the curve's points are then moved
+  // onto the input surface; none: the curve follows the input's own faces.
+  std::optional<double> spacing;
+  // With spacing: refuse (InputError) a remeshed surface estimated at more faces; 0: no limit.
+  int64_t max_faces = 0;
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
   // Set: the mesh is made ready for a variable wire's slabs first, which fold in flat
   // triangles (what `wire --method variable` does); none: it is used as it is.
@@ -47,7 +53,7 @@ struct CurveJob {
 using StageTimes = std::vector<std::pair<std::string, double>>;
 
 struct CurveResult {
-  QuadMesh quads;
+  QuadMesh quads; // of the remeshed surface with CurveJob::spacing
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
   int64_t points_written = 0; // to CurveJob::output
@@ -56,8 +62,19 @@ struct CurveResult {
   int64_t stars = 0, cap_flips = 0, cap_cuts = 0, needle_collapses = 0;
 };
 
-// Runs connectivity, quadrangulation, the cycle, control points and smoothing on a mesh
-// that repair() accepted. Takes the mesh by value so its memory is released as soon as
+// The edge length of the even mesh on which the curve's passes lie `spacing` apart (their
+// median distance), as measured for each quadrangulation (docs/density.md).
+double spacing_edge_length(double spacing, Quadrangulation quadrangulation);
+
+// The even remesh (remesh.h) of a mesh that repair() accepted, on which a curve made
+// with this quadrangulation has passes `spacing` apart. Throws ParameterError for quad
+// none (a remeshed surface has no quads) or a spacing not smaller than the model, and
+// what remesh throws (max_faces: see RemeshOptions).
+PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation,
+                              int64_t max_faces = 0);
+
+// Runs the remeshing (with CurveJob::spacing), connectivity, quadrangulation, the cycle,
+// control points and smoothing on a mesh that repair() accepted. Takes the mesh by value so its memory is released as soon as
 // the quad mesh exists. Appends to `times` if given. Throws TopologyError for a quad
 // mesh with boundary under --quad catmull-clark or none, and what the stages throw.
 CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times = nullptr);

@@ -1,5 +1,6 @@
 #include "meander/jobs.h"
 
+#include "meander/connectivity.h"
 #include "meander/error.h"
 #include "meander/parameters.h"
 #include "meander/subdivide.h"
@@ -90,6 +91,12 @@ std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob
                     " degrees) or of triangles folded over their neighbours");
   }
   return notes;
+}
+
+Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job) {
+  if (!job.spacing) return make_duotone(mesh, connectivity, job.duotone);
+  const PolygonMesh even = remesh_to_spacing(mesh, *job.spacing, job.duotone.quadrangulation, job.max_faces);
+  return make_duotone(even, build_connectivity(even), job.duotone);
 }
 
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times) {

@@ -66,7 +66,9 @@ template <class Job> void check_numbers(const Job& job) {
     using V = std::decay_t<decltype(value)>;
     if constexpr (std::is_arithmetic_v<V> && !std::is_same_v<V, bool>) check_parameter(p, double(value), std::is_integral_v<V>);
     else if constexpr (std::is_same_v<V, std::optional<double>>)
-      if (value && !(*value > 0)) throw ParameterError(p.name, " must be a positive number or auto (got " + number_text(*value) + ")");
+      if (value && !(*value > 0 && std::isfinite(*value)))
+        throw ParameterError(p.name, " must be a positive number or " + std::string(p.choices[0]) + " (got " +
+                                         number_text(*value) + ")");
   });
 }
 
@@ -84,14 +86,14 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
   } else if constexpr (std::is_arithmetic_v<T>) {
     value = number<T>(p, text);
   } else if constexpr (std::is_same_v<T, std::optional<double>>) {
-    if (text == "auto") {
+    if (text == p.choices[0]) {
       value.reset();
       return;
     }
     double r = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), r);
     if (error != std::errc() || end != text.data() + text.size() || !(r > 0) || !std::isfinite(r))
-      throw ParameterError(p.name, ": expected a positive number or auto, got " + shown(text));
+      throw ParameterError(p.name, ": expected a positive number or " + std::string(p.choices[0]) + ", got " + shown(text));
     value = r;
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     value = parse_duotone_colors(text); // its refusals name the parameter
@@ -102,7 +104,7 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
   }
 }
 
-template <class T> std::string parameter_text(const T& value) {
+template <class T> std::string parameter_text(const Parameter& p, const T& value) {
   if constexpr (std::is_same_v<T, bool>) {
     return value ? "true" : "false";
   } else if constexpr (std::is_integral_v<T>) {
@@ -110,7 +112,7 @@ template <class T> std::string parameter_text(const T& value) {
   } else if constexpr (std::is_arithmetic_v<T>) {
     return number_text(value);
   } else if constexpr (std::is_same_v<T, std::optional<double>>) {
-    return value ? number_text(*value) : "auto";
+    return value ? number_text(*value) : std::string(p.choices[0]);
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     char text[16];
     std::snprintf(text, sizeof text, "#%02x%02x%02x,#%02x%02x%02x", value[0][0], value[0][1], value[0][2], value[1][0],
@@ -125,7 +127,7 @@ template <class T> std::string parameter_text(const T& value) {
 
 #define MEANDER_PARAMETER_TYPE(...)                                                                                   \
   template void set_parameter<__VA_ARGS__>(const Parameter&, std::string_view, __VA_ARGS__&);                        \
-  template std::string parameter_text<__VA_ARGS__>(const __VA_ARGS__&);
+  template std::string parameter_text<__VA_ARGS__>(const Parameter&, const __VA_ARGS__&);
 MEANDER_PARAMETER_TYPE(int)
 MEANDER_PARAMETER_TYPE(uint64_t)
 MEANDER_PARAMETER_TYPE(double)

@@ -4,6 +4,8 @@
 #include "meander/curve_writer.h"
 #include "meander/error.h"
 #include "meander/io.h"
+#include "meander/parameters.h"
+#include "meander/remesh.h"
 #include "meander/star_polygons.h"
 
 #include <chrono>
@@ -30,6 +32,23 @@ private:
 
 } // namespace
 
+double spacing_edge_length(double spacing, Quadrangulation) {
+  // The curve's median gap over the remeshed edge length, measured (docs/density.md).
+  constexpr double gap_per_edge = 0.46;
+  return spacing / gap_per_edge;
+}
+
+PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation, int64_t max_faces) {
+  if (quadrangulation == Quadrangulation::none)
+    throw ParameterError(parameters::spacing.name, " remeshes the surface into triangles, which quad none cannot take "
+                                                   "(it needs a mesh of quads)");
+  if (const double size = bounding_box(mesh.positions).largest_side(); !(spacing < size))
+    throw ParameterError(parameters::spacing.name, " " + parameter_text(parameters::spacing, std::optional(spacing)) +
+                                                       " is not smaller than the model (its largest side is " +
+                                                       parameter_text(parameters::spacing, std::optional(size)) + ")");
+  return remesh(mesh, {.edge_length = spacing_edge_length(spacing, quadrangulation), .max_faces = max_faces});
+}
+
 CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times) {
   return make_curve(std::move(mesh), Connectivity(), job, times);
 }
@@ -37,6 +56,14 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
   Stopwatch watch(times);
   CurveResult result;
+  // The input surface, onto which the curve made on its remeshed version is moved.
+  PolygonMesh surface;
+  if (job.spacing) {
+    surface = std::move(mesh);
+    mesh = remesh_to_spacing(surface, *job.spacing, job.quadrangulation, job.max_faces);
+    connectivity = Connectivity();
+    watch.lap("remesh");
+  }
   if (job.slab_mesh) {
     if (job.slab_mesh->star_sides > 0) {
       StarredPolygons starred = star_polygons(std::move(mesh), job.slab_mesh->star_sides);
@@ -77,17 +104,23 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
                           "boundaries");
   }
   watch.lap("quadrangulate");
+  // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
+  const bool sample = job.sample || job.spacing;
   std::optional<CycleCurveWriter> writer;
-  if (!job.sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
+  if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
   watch.lap("cycle");
   if (writer) {
     result.points_written = writer->finish(result.cycle);
     watch.lap("smooth + write");
   }
-  if (job.sample) {
+  if (sample) {
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
     watch.lap("smooth");
+    if (job.spacing) {
+      project_onto_surface(surface, result.curves.points);
+      watch.lap("project");
+    }
     if (!job.output.empty()) {
       write_polylines(result.curves, job.output);
       result.points_written = int64_t(result.curves.points.size());

@@ -4,6 +4,7 @@
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/parameters.h"
+#include "meander/remesh.h"
 #include "meander/shapes.h"
 #include "meander/textured_io.h"
 
@@ -186,7 +187,7 @@ std::string studio_parameters_json() {
     json list = json::array();
     visit_parameters(job, [&](const Parameter& p, const auto& value) {
       if (&p == &parameters::method || &p == &parameters::shape) return;
-      json entry = {{"name", p.name}, {"help", p.help}, {"default", parameter_text(value)}};
+      json entry = {{"name", p.name}, {"help", p.help}, {"default", parameter_text(p, value)}};
       if (std::isfinite(p.min)) entry["min"] = p.min;
       if (std::isfinite(p.max)) entry["max"] = p.max;
       if (!p.choices.empty()) entry["choices"] = std::vector<std::string>(p.choices.begin(), p.choices.end());
@@ -224,12 +225,21 @@ namespace {
 // The elements make_studio_result would hold for these parameters as they are.
 int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   const PolygonMesh& mesh = surface.repaired.mesh;
-  const int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size());
-  const int32_t edges = surface.repaired.connectivity.num_edges();
+  int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size()), edges = surface.repaired.connectivity.num_edges();
+  const bool duotone = params.mode == StudioMode::duotone;
+  const std::optional<double> spacing = duotone ? params.duotone.spacing : params.wire.curve.spacing;
+  if (spacing) {
+    // The remeshed surface's triangles, from its area (remeshed_faces_estimate), bounded
+    // so that the products below cannot overflow.
+    const Quadrangulation q = duotone ? params.duotone.duotone.quadrangulation : params.wire.curve.quadrangulation;
+    faces = std::min<int64_t>(remeshed_faces_estimate(mesh, spacing_edge_length(*spacing, q)), int64_t(1) << 40);
+    corners = 3 * faces;
+    edges = corners / 2 + 1;
+  }
   // Quads per quadrangulation (quadrangulate.h): one per edge, one per corner, the faces.
   const auto quads = [&](Quadrangulation q) {
     switch (q) {
-    case Quadrangulation::dual_simplest: return edges > 0 ? int64_t(edges) : corners;
+    case Quadrangulation::dual_simplest: return edges > 0 ? edges : corners;
     case Quadrangulation::catmull_clark: return corners;
     case Quadrangulation::none: return faces;
     }
@@ -243,7 +253,7 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   const WireJob& wire = params.wire;
   int64_t cycle = 2 * quads(wire.curve.quadrangulation); // triangles the cycle visits
   if (params.mode == StudioMode::curve) return cycle * wire.curve.curve.samples;
-  if (wire_curve_job(wire).slab_mesh) {
+  if (wire_curve_job(wire).slab_mesh && !spacing) { // a remeshed surface has no polygons to split
     // The slab mesh splits a polygon of n >= 5 sides into a star: n more edges (dual of
     // Simplest's quads), 2n more corners (Catmull-Clark's).
     const int star_sides = SlabMeshOptions{}.star_sides;
@@ -297,7 +307,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   };
   if (mode == StudioMode::duotone) {
     const DuotoneJob& job = params.duotone;
-    Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job.duotone); });
+    Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job); });
     const bool same_atlas = previous && previous->params.mode == StudioMode::duotone &&
                             previous->params.duotone.tiles == job.tiles && !previous->appearance.materials.empty();
     TexturedMesh painted = paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{});

@@ -1,0 +1,158 @@
+// --spacing: the curve, wire and duotone made on the surface remeshed evenly,
+// the curve moved back onto the input surface; its topology and the single
+// curve per component kept on every real mesh, judged by the independent
+// certificate checker.
+#include "certificate.h"
+#include "test_support.h"
+
+#include "meander/check.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/pipeline.h"
+#include "meander/remesh.h"
+#include "meander/shapes.h"
+
+#include <algorithm>
+
+namespace meander::test {
+namespace {
+
+// The largest distance from a point of the curves to the surface, over the
+// surface's size.
+double distance_to_surface(const Polylines& curves, const PolygonMesh& surface) {
+  std::vector<Vec3> projected = curves.points;
+  project_onto_surface(surface, projected);
+  double farthest = 0;
+  for (size_t i = 0; i < projected.size(); ++i) farthest = std::max(farthest, norm(projected[i] - curves.points[i]));
+  return farthest / bounding_box(surface.positions).diagonal();
+}
+
+TEST(Spacing, OneCurvePerComponentOnTheInputSurface) {
+  PolygonMesh two = sphere(600);
+  const PolygonMesh ring = torus(600);
+  const int32_t offset = two.num_vertices(), corners = two.num_corners();
+  for (Vec3 p : ring.positions) two.positions.push_back(p + Vec3{3, 0, 0});
+  for (int32_t v : ring.face_vertices) two.face_vertices.push_back(v + offset);
+  for (size_t f = 1; f < ring.face_start.size(); ++f) two.face_start.push_back(corners + ring.face_start[f]);
+  const struct {
+    const char* name;
+    PolygonMesh mesh;
+    int curves;
+  } shapes[] = {{"sphere", sphere(3000), 1},
+                {"torus", torus(3000), 1},
+                {"pretzel", genus_surface(2, 4000), 1},
+                {"genus 3", genus_surface(3, 4000), 1},
+                {"grid", grid(2000), 1},
+                {"moebius", moebius(800), 1},
+                {"sphere and torus", two, 2}};
+  for (const auto& shape : shapes) {
+    SCOPED_TRACE(shape.name);
+    const double spacing = bounding_box(shape.mesh.positions).diagonal() / 40;
+    const CurveResult result = make_curve(shape.mesh, CurveJob{.spacing = spacing});
+    EXPECT_EQ(result.cycle.num_cycles(), shape.curves);
+    EXPECT_EQ(result.curves.size(), shape.curves);
+    EXPECT_LT(distance_to_surface(result.curves, shape.mesh), 1e-6);
+  }
+}
+
+TEST(Spacing, AFinerSpacingGivesALongerCurve) {
+  const PolygonMesh mesh = genus_surface(2, 4000);
+  const double diagonal = bounding_box(mesh.positions).diagonal();
+  double previous = 0;
+  for (double fraction : {20.0, 40.0, 80.0}) {
+    const CurveResult result = make_curve(mesh, CurveJob{.spacing = diagonal / fraction});
+    double length = 0;
+    for (int32_t k = 0; k < result.curves.size(); ++k) {
+      const std::span<const Vec3> curve = result.curves.polyline(k);
+      for (size_t i = 0; i < curve.size(); ++i) length += norm(curve[(i + 1) % curve.size()] - curve[i]);
+    }
+    // A curve covering the area A at spacing D is about A / D long.
+    EXPECT_GT(length, 1.6 * previous) << fraction;
+    previous = length;
+  }
+}
+
+TEST(Spacing, RefusedWhereItCannotWork) {
+  const PolygonMesh mesh = sphere(500);
+  EXPECT_THROW(make_curve(mesh, CurveJob{.spacing = 2.5}),
+               ParameterError); // the sphere is 2 wide
+  EXPECT_THROW(make_curve(mesh, CurveJob{.spacing = 0.1, .quadrangulation = Quadrangulation::none}), ParameterError);
+  EXPECT_THROW(make_curve(mesh, CurveJob{.spacing = 0.0001, .max_faces = 1'000'000}), InputError);
+}
+
+// Every real mesh, at a spacing of 1/40 of its diagonal: the certificate of the
+// remeshed surface holds, with as many cycles and the same Euler characteristic
+// as the curve on the input's own faces.
+class SpacingOnRealMesh : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SpacingOnRealMesh, KeepsTheCyclesAndTheTopology) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  const std::string in = (shared_meshes() / GetParam()).string();
+  const auto plain = dir / "plain.obj", even = dir / "even.obj", curve = dir / "curve.obj";
+  const CommandResult a = run_cli({"curve", in, "-o", curve.string(), "--triangles", plain.string()});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const double spacing = bounding_box(read_mesh(in).positions).diagonal() / 40;
+  const CommandResult b =
+      run_cli({"curve", in, "-o", curve.string(), "--triangles", even.string(), "--spacing", std::to_string(spacing)});
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const CertificateFacts before = check_certificate(parse_obj_groups(plain)),
+                         after = check_certificate(parse_obj_groups(even));
+  EXPECT_EQ(after.problem, "");
+  EXPECT_EQ(after.cycles, before.cycles);
+  EXPECT_EQ(after.euler_characteristic, before.euler_characteristic);
+  EXPECT_EQ(after.boundary_edges > 0, before.boundary_edges > 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(RealMeshes, SpacingOnRealMesh,
+                         ::testing::Values("bunny_closed.off", "spot_triangulated.obj", "spot_quadrangulated.obj",
+                                           "spot_control_mesh.obj", "tetrahedron.obj", "icosahedron_binary.stl",
+                                           "sphere.obj", "torus.obj", "kitten.off", "bob_small.ply", "eight.off",
+                                           "genus3hexa1.obj", "fertility.off", "fandisk_quads.off",
+                                           "stanford-bunny_original_holes.obj", "face.obj", "grid.off", "camelhead.off",
+                                           "degtri_four.off", "moebius.obj", "platonic_shelf.obj", "hourglass_ico.obj",
+                                           "triple_vierbein.obj", "conrod.stl", "beveledcube.obj"),
+                         [](const auto& param_info) { return test_name(param_info.param); });
+
+TEST(CliSpacing, BadValuesExitWithTwoAndWriteNothing) {
+  const auto dir = output_dir();
+  const auto in = dir / "sphere.obj", out = dir / "curve.obj";
+  write_mesh(sphere(500), in);
+  for (const char* value : {"0", "-1", "abc", "nan", "inf"}) {
+    const CommandResult r = run_cli({"curve", in.string(), "-o", out.string(), "--spacing", value});
+    EXPECT_EQ(r.exit_code, 2) << value << ": " << r.err;
+    EXPECT_NE(r.err.find("--spacing"), std::string::npos) << r.err;
+  }
+  const CommandResult large = run_cli({"curve", in.string(), "-o", out.string(), "--spacing", "5"});
+  EXPECT_EQ(large.exit_code, 2) << large.err;
+  EXPECT_NE(large.err.find("not smaller than the model"), std::string::npos) << large.err;
+  const CommandResult fine =
+      run_cli({"curve", in.string(), "-o", out.string(), "--spacing", "0.0001", "--max-faces", "100000"});
+  EXPECT_NE(fine.exit_code, 0);
+  EXPECT_NE(fine.err.find("faces, over the limit of 100000"), std::string::npos) << fine.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(CliSpacing, WireAndDuotoneTakeItToo) {
+  const auto dir = output_dir();
+  const auto in = dir / "pretzel.obj";
+  const PolygonMesh pretzel = genus_surface(2, 3000);
+  write_mesh(pretzel, in);
+  const std::string spacing = std::to_string(bounding_box(pretzel.positions).diagonal() / 25);
+  const CommandResult wire = run_cli({"wire", in.string(), "-o", (dir / "wire.stl").string(), "--spacing", spacing});
+  EXPECT_EQ(wire.exit_code, 0) << wire.err;
+  const CommandResult variable =
+      run_cli({"wire", in.string(), "-o", (dir / "variable.stl").string(), "--method", "variable", "--spacing", spacing});
+  EXPECT_EQ(variable.exit_code, 0) << variable.err;
+  // A duotone of twice the spacing has about a quarter of the faces.
+  const std::string twice = std::to_string(2 * std::stod(spacing));
+  for (const auto& [name, value] : {std::pair{"fine.obj", spacing}, std::pair{"coarse.obj", twice}}) {
+    const CommandResult duotone = run_cli({"duotone", in.string(), "-o", (dir / name).string(), "--spacing", value});
+    ASSERT_EQ(duotone.exit_code, 0) << duotone.err;
+  }
+  const double ratio = double(read_mesh(dir / "fine.obj").num_faces()) / read_mesh(dir / "coarse.obj").num_faces();
+  EXPECT_NEAR(ratio, 4, 1);
+}
+
+} // namespace
+} // namespace meander::test
