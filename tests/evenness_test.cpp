@@ -6,6 +6,7 @@
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -214,6 +215,54 @@ TEST(Evenness, RefusesBadInputPrecisely) {
             "ParameterError: step 1e-12 would make 2^31 curve points or more");
   EXPECT_EQ(message(square, triangle, {.surface_samples = 0}),
             "ParameterError: surface_samples must be at least 1 (got 0)");
+}
+
+// `meander info MESH --curve CURVE` as a user runs it: the mesh's report and the curve's
+// evenness, in text and as JSON; a curve file the measure refuses names the file.
+TEST(CliEvenness, InfoMeasuresACurveOfTheMesh) {
+  const auto dir = test::output_dir();
+  const auto mesh = dir / "sphere.obj", curve = dir / "curve.obj";
+  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "2000", "-o", mesh.string()}).exit_code, 0);
+  ASSERT_EQ(test::run_cli({"curve", mesh.string(), "-o", curve.string()}).exit_code, 0);
+
+  const test::CommandResult json = test::run_cli({"info", mesh.string(), "--curve", curve.string(), "--json"});
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json e = nlohmann::json::parse(json.out).at("evenness");
+  EXPECT_EQ(e.at("curve"), curve.string());
+  EXPECT_EQ(e.at("curves"), 1);
+  EXPECT_GT(e.at("points").get<int>(), 1000);
+  const double median = e.at("gap").at("median").get<double>();
+  EXPECT_GT(median, e.at("spacing_estimate").get<double>() / 2);
+  EXPECT_LT(median, e.at("spacing_estimate").get<double>() * 2);
+  EXPECT_LT(e.at("gap").at("p5").get<double>(), median);
+  EXPECT_GT(e.at("gap").at("p95").get<double>(), median);
+  EXPECT_GT(e.at("gap").at("cv").get<double>(), 0);
+  EXPECT_EQ(e.at("coverage").at("samples"), 100000);
+  EXPECT_GT(e.at("coverage").at("max").get<double>(), 0);
+
+  const test::CommandResult text = test::run_cli({"info", mesh.string(), "--curve", curve.string()});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("\ngap                    median "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("x median gap (100000 surface points)"), std::string::npos) << text.out;
+  EXPECT_EQ(test::run_cli({"info", mesh.string()}).out.find("gap"), std::string::npos);
+}
+
+TEST(CliEvenness, BadCurveFilesAreRefusedNamingTheFile) {
+  const auto dir = test::output_dir();
+  const auto mesh = dir / "sphere.obj";
+  ASSERT_EQ(test::run_cli({"generate", "sphere", "--faces", "500", "-o", mesh.string()}).exit_code, 0);
+  const auto two = test::write_file("two.obj", "v 0 0 0\nv 1 0 0\nl 1 2 1\n");
+  const test::CommandResult short_curve = test::run_cli({"info", mesh.string(), "--curve", two.string()});
+  EXPECT_EQ(short_curve.exit_code, 1);
+  EXPECT_NE(short_curve.err.find(two.string() + ": curve 0 has 2 points, fewer than the 3 of a closed curve"),
+            std::string::npos)
+      << short_curve.err;
+  EXPECT_TRUE(short_curve.out.empty()) << short_curve.out;
+  const auto bad = test::write_file("bad.obj", "v 0 0 0\nv 1 0 0\nl 1 5\n");
+  const test::CommandResult malformed = test::run_cli({"info", mesh.string(), "--curve", bad.string()});
+  EXPECT_EQ(malformed.exit_code, 1);
+  EXPECT_NE(malformed.err.find("bad.obj:3: "), std::string::npos) << malformed.err;
+  EXPECT_EQ(test::run_cli({"info", mesh.string(), "--curve", (dir / "curve.stl").string()}).exit_code, 2);
 }
 
 } // namespace
