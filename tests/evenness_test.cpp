@@ -201,11 +201,14 @@ TEST(Evenness, RefusesBadInputPrecisely) {
   EXPECT_EQ(message(square, nan), "InputError: curve 0: point 1 is not finite");
   EXPECT_EQ(message(square, one_curve({{0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}})),
             "InputError: curve 0 has zero length");
+  EXPECT_EQ(message(square, one_curve({{0.2f, 0.2f, 0}, {0.8f, 0.2f, 0}, {0.5f, 1.2f, 0}})),
+            "InputError: curve 0: point 2 lies outside the surface's bounding box grown by a tenth of its diagonal: "
+            "the curves are not on this surface");
   PolygonMesh infinite = square;
   infinite.positions[3].z = INFINITY;
   EXPECT_EQ(message(infinite, triangle), "InputError: surface vertex 3 has a non-finite position");
   PolygonMesh flat = square;
-  for (Vec3& p : flat.positions) p.y = 0;
+  for (Vec3& p : flat.positions) p.y = p.x;
   EXPECT_EQ(message(flat, triangle), "InputError: the surface has no area");
   EXPECT_EQ(message(square, triangle, {.step = -1}),
             "ParameterError: step must be 0 (automatic) or a positive number (got -1)");
@@ -215,6 +218,30 @@ TEST(Evenness, RefusesBadInputPrecisely) {
             "ParameterError: step 1e-12 would make 2^31 curve points or more");
   EXPECT_EQ(message(square, triangle, {.surface_samples = 0}),
             "ParameterError: surface_samples must be at least 1 (got 0)");
+}
+
+// A curve of only one of two squares 1000 apart: the other square lies thousands of
+// spacings from every curve point, where the grid would search for hours. Refused at once
+// instead, saying why.
+TEST(Evenness, RefusesCurvesThatLeaveASurfaceFarAway) {
+  PolygonMesh two = grid(200);
+  const int32_t n = two.num_vertices();
+  for (int32_t v = 0; v < n; ++v) two.positions.push_back(two.positions[size_t(v)] + Vec3{1000, 0, 0});
+  for (int32_t f = 0, faces = two.num_faces(); f < faces; ++f) {
+    std::vector<int32_t> face(two.face(f).begin(), two.face(f).end());
+    for (int32_t& v : face) v += n;
+    two.add_face(face);
+  }
+  try {
+    measure_evenness(two, boustrophedon(40));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_TRUE(message.starts_with("the curves do not cover the surface: part of it lies farther than 32 spacing "
+                                    "estimates (1.6"))
+        << message;
+  }
+  EXPECT_NO_THROW(measure_evenness(grid(200), boustrophedon(40)));
 }
 
 // `meander info MESH --curve CURVE` as a user runs it: the mesh's report and the curve's

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,20 @@ namespace {
 // distance. A straight stretch has ratio 1; across a hairpin the ratio grows without
 // bound; on a circle the points beyond about 157 degrees count.
 constexpr double kPassRatio = 1.4;
+
+// How far, in spacing estimates, a nearest point is looked for. A grid query visits O(k^3)
+// cells to find a point k cells away, so a surface far from every curve (curves of
+// another mesh, or of only some of its components) would take hours; within this reach
+// it takes at most milliseconds a query.
+constexpr double kReach = 32;
+
+// The automatic step gives at most this many points (about 1 GB of work arrays): a curve
+// of a 10M-triangle mesh would get hundreds of millions at spacing_estimate / 8.
+constexpr double kMaxAutomaticPoints = 1 << 24;
+
+// How far outside the surface's bounding box, in diagonals, a curve may stray before it
+// is taken for a curve of another mesh, whose spacing estimate would mean nothing.
+constexpr double kBoxSlack = 0.1;
 
 std::string curve_name(int32_t k) { return "curve " + std::to_string(k); }
 
@@ -51,6 +66,20 @@ void check_input(const PolygonMesh& surface, const Polylines& curves, const Even
   for (int32_t v = 0; v < surface.num_vertices(); ++v)
     if (!is_finite(surface.positions[size_t(v)]))
       throw InputError("surface vertex " + std::to_string(v) + " has a non-finite position");
+  const Box3 box = bounding_box(surface.positions);
+  const double slack = kBoxSlack * box.diagonal();
+  auto outside = [&](Vec3 p) {
+    return p.x < box.min.x - slack || p.y < box.min.y - slack || p.z < box.min.z - slack || p.x > box.max.x + slack ||
+           p.y > box.max.y + slack || p.z > box.max.z + slack;
+  };
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const auto c = curves.polyline(k);
+    for (size_t j = 0; j < c.size(); ++j)
+      if (outside(c[j]))
+        throw InputError(curve_name(k) + ": point " + std::to_string(j) +
+                         " lies outside the surface's bounding box grown by a tenth of its diagonal: the curves "
+                         "are not on this surface");
+  }
 }
 
 double triangle_area(Vec3 a, Vec3 b, Vec3 c) {
@@ -149,23 +178,37 @@ public:
     }
   }
 
-  // The squared distance from p to the nearest point i for which accept(i, squared
-  // distance) holds; INFINITY if there is none. Visits the cells in rings of growing
-  // Chebyshev distance around p's cell until the next ring lies farther than the best.
-  template <class Accept> double nearest_squared(Vec3 p, Accept&& accept) const {
+  // The squared distance from p to the nearest point i within `radius` for which
+  // accept(i, squared distance) holds; INFINITY if there is none. Visits the cells in
+  // rings of growing Chebyshev distance around p's cell until the next ring lies farther
+  // than the best or the radius.
+  template <class Accept> double nearest_squared(Vec3 p, double radius, Accept&& accept) const {
     const std::array<double, 3> q = {double(p.x) - origin_.x, double(p.y) - origin_.y, double(p.z) - origin_.z};
     std::array<int64_t, 3> c{};
-    double margin = INFINITY; // from p to the nearest face of its cell
-    int64_t first = 0;        // rings nearer than this miss the points' cells
+    std::array<double, 3> f{}; // p's offset in its cell
+    double margin = INFINITY;  // from p to the nearest face of its cell
+    int64_t first = 0;         // rings nearer than this miss the points' cells
     for (size_t a = 0; a < 3; ++a) {
       c[a] = int64_t(std::floor(q[a] / cell_));
-      const double f = q[a] - double(c[a]) * cell_;
-      margin = std::min({margin, f, cell_ - f});
+      f[a] = q[a] - double(c[a]) * cell_;
+      margin = std::min({margin, f[a], cell_ - f[a]});
       first = std::max({first, lo_[a] - c[a], c[a] - hi_[a]});
     }
     margin = std::max(margin, 0.0);
+    // From p to the cells of coordinate x on axis a, squared.
+    auto apart = [&](size_t a, int64_t x) {
+      const double d = x < c[a]   ? double(c[a] - x - 1) * cell_ + f[a]
+                       : x > c[a] ? double(x - c[a] - 1) * cell_ + cell_ - f[a]
+                                  : 0.0;
+      return d * d;
+    };
+    const double limit = radius * radius;
     double best = INFINITY;
-    auto visit = [&](int64_t x, int64_t y, int64_t z) {
+    // Most cells of a ring lie beyond the best point found so far: skipped without a look
+    // at their bucket.
+    auto near = [&](double d2) { return d2 < best && d2 <= limit; };
+    auto visit = [&](int64_t x, int64_t y, int64_t z, double yz) {
+      if (!near(yz + apart(0, x))) return;
       const uint64_t b = hash(x, y, z);
       for (int32_t i = start_[b]; i < start_[b + 1]; ++i) {
         const Vec3 d = sorted_[size_t(i)] - p;
@@ -177,24 +220,29 @@ public:
       const int64_t x0 = std::max(c[0] - k, lo_[0]), x1 = std::min(c[0] + k, hi_[0]);
       const int64_t y0 = std::max(c[1] - k, lo_[1]), y1 = std::min(c[1] + k, hi_[1]);
       const int64_t z0 = std::max(c[2] - k, lo_[2]), z1 = std::min(c[2] + k, hi_[2]);
-      for (int64_t z = z0; z <= z1; ++z)
+      for (int64_t z = z0; z <= z1; ++z) {
+        const double zz = apart(2, z);
+        if (!near(zz)) continue;
         for (int64_t y = y0; y <= y1; ++y) {
+          const double yz = zz + apart(1, y);
+          if (!near(yz)) continue;
           if (z == c[2] - k || z == c[2] + k || y == c[1] - k || y == c[1] + k) {
-            for (int64_t x = x0; x <= x1; ++x) visit(x, y, z);
+            for (int64_t x = x0; x <= x1; ++x) visit(x, y, z, yz);
           } else {
-            if (c[0] - k >= lo_[0] && c[0] - k <= hi_[0]) visit(c[0] - k, y, z);
-            if (c[0] + k >= lo_[0] && c[0] + k <= hi_[0]) visit(c[0] + k, y, z);
+            if (c[0] - k >= lo_[0] && c[0] - k <= hi_[0]) visit(c[0] - k, y, z, yz);
+            if (c[0] + k >= lo_[0] && c[0] + k <= hi_[0]) visit(c[0] + k, y, z, yz);
           }
         }
+      }
       // Points in the rings beyond k lie at least k cells and the margin away.
       const double reach = double(k) * cell_ + margin;
-      if (best <= reach * reach) break;
+      if (best <= reach * reach || radius <= reach) break;
       // Rings 0 .. k hold every cell with points.
       if (c[0] - k <= lo_[0] && c[0] + k >= hi_[0] && c[1] - k <= lo_[1] && c[1] + k >= hi_[1] && c[2] - k <= lo_[2] &&
           c[2] + k >= hi_[2])
         break;
     }
-    return best;
+    return best <= limit ? best : INFINITY;
   }
 
 private:
@@ -292,7 +340,8 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
 
   EvennessReport report;
   report.spacing_estimate = cumulative.back() / total_length;
-  report.step = options.step > 0 ? options.step : report.spacing_estimate / 8;
+  report.step =
+      options.step > 0 ? options.step : std::max(report.spacing_estimate / 8, total_length / kMaxAutomaticPoints);
   const Resampled r = resample(curves, length, report.step);
   report.points = int32_t(r.points.size());
 
@@ -306,6 +355,7 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
   for (Vec3 p : r.points) box.extend(p);
   for (Vec3 p : samples) box.extend(p);
   const PointGrid grid(r.points, report.spacing_estimate, box);
+  const double reach = kReach * report.spacing_estimate;
 
   std::vector<double> gap(r.points.size());
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, report.points, 1024), [&](const tbb::blocked_range<int32_t>& range) {
@@ -313,7 +363,7 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
       const int32_t k = r.curve[size_t(i)];
       const int32_t m = r.count[size_t(k)];
       const double limit = kPassRatio * kPassRatio / (r.spacing[size_t(k)] * r.spacing[size_t(k)]);
-      gap[size_t(i)] = std::sqrt(grid.nearest_squared(r.points[size_t(i)], [&](int32_t j, double d2) {
+      gap[size_t(i)] = std::sqrt(grid.nearest_squared(r.points[size_t(i)], reach, [&](int32_t j, double d2) {
         if (r.curve[size_t(j)] != k) return true;
         const int32_t apart = std::abs(r.index[size_t(j)] - r.index[size_t(i)]);
         const double along = std::min(apart, m - apart);
@@ -336,10 +386,16 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
 
   report.surface_samples = options.surface_samples;
   std::vector<double> coverage(samples.size());
+  std::atomic<bool> uncovered = false; // the rest would each cost the reach's cells
   tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t s = range.begin(); s < range.end(); ++s)
-      coverage[s] = std::sqrt(grid.nearest_squared(samples[s], [](int32_t, double) { return true; }));
+    for (size_t s = range.begin(); s < range.end() && !uncovered; ++s) {
+      coverage[s] = std::sqrt(grid.nearest_squared(samples[s], reach, [](int32_t, double) { return true; }));
+      if (std::isinf(coverage[s])) uncovered = true;
+    }
   });
+  if (uncovered)
+    throw InputError("the curves do not cover the surface: part of it lies farther than " + number(kReach) +
+                     " spacing estimates (" + number(reach) + ") from them");
   report.coverage_max = *std::max_element(coverage.begin(), coverage.end());
   report.coverage_p99 = percentile(coverage, 0.99);
   return report;
