@@ -1,6 +1,8 @@
 #include "commands.h"
 
 #include "meander/check.h"
+#include "meander/error.h"
+#include "meander/evenness.h"
 #include "meander/io.h"
 #include "meander/printability.h"
 
@@ -16,17 +18,52 @@ namespace {
 
 struct InfoArgs {
   std::string input;
+  std::string curve;
   bool json = false;
   bool solid = false;
   double min_thickness = 0;
 };
+
+// --curve: the curves of a file measured on the mesh.
+struct CurveEvenness {
+  std::string file;
+  int32_t curves = 0;
+  EvennessReport report;
+};
+
+nlohmann::ordered_json evenness_json(const CurveEvenness& e) {
+  const EvennessReport& r = e.report;
+  return {
+      {"curve", e.file},
+      {"curves", e.curves},
+      {"spacing_estimate", r.spacing_estimate},
+      {"step", r.step},
+      {"points", r.points},
+      {"unpaired_points", r.unpaired},
+      {"gap", {{"median", r.gap_median}, {"mean", r.gap_mean}, {"cv", r.gap_cv}, {"p5", r.gap_p5}, {"p95", r.gap_p95}}},
+      {"coverage", {{"samples", r.surface_samples}, {"p99", r.coverage_p99}, {"max", r.coverage_max}}}};
+}
+
+// Relative to the median gap, the scale at which evenness is judged.
+void print_evenness(const CurveEvenness& e) {
+  const EvennessReport& r = e.report;
+  const double g = r.gap_median;
+  std::printf("curve                  %s: %d closed curve%s, %d points %g apart (spacing estimate %g)\n",
+              e.file.c_str(), e.curves, e.curves == 1 ? "" : "s", r.points, r.step, r.spacing_estimate);
+  std::printf("gap                    median %g (%.2fx the spacing estimate), CV %.2f, p5 %.2fx, p95 %.2fx median\n", g,
+              g / r.spacing_estimate, r.gap_cv, r.gap_p5 / g, r.gap_p95 / g);
+  if (r.unpaired > 0) std::printf("                       %d points without another pass left out\n", r.unpaired);
+  std::printf("coverage               max %.2fx, p99 %.2fx median gap (%d surface points)\n", r.coverage_max / g,
+              r.coverage_p99 / g, r.surface_samples);
+}
 
 std::string genus_text(const ComponentReport& c) {
   if (c.genus < 0) return "n/a (non-manifold)";
   return c.orientable ? std::to_string(c.genus) : std::to_string(c.genus) + " cross-cap" + (c.genus == 1 ? "" : "s");
 }
 
-void print_json(const std::string& input, const MeshReport& r, const PrintabilityReport* solid) {
+void print_json(const std::string& input, const MeshReport& r, const PrintabilityReport* solid,
+                const CurveEvenness* evenness) {
   nlohmann::ordered_json j;
   j["file"] = input;
   j["vertices"] = r.vertices;
@@ -63,10 +100,12 @@ void print_json(const std::string& input, const MeshReport& r, const Printabilit
                      {"genus", c.genus}});
   j["component_details"] = comps;
   if (solid) j["solid"] = nlohmann::ordered_json::parse(printability_json(*solid));
+  if (evenness) j["evenness"] = evenness_json(*evenness);
   std::printf("%s\n", j.dump(2).c_str());
 }
 
-void print_text(const std::string& input, const MeshReport& r, const PrintabilityReport* solid) {
+void print_text(const std::string& input, const MeshReport& r, const PrintabilityReport* solid,
+                const CurveEvenness* evenness) {
   std::string sizes;
   for (const auto& [size, count] : r.faces_by_size) {
     const char* name = size == 3 ? "triangles" : size == 4 ? "quads" : nullptr;
@@ -96,6 +135,7 @@ void print_text(const std::string& input, const MeshReport& r, const Printabilit
                 c.orientable ? "orientable" : "non-orientable", genus_text(c).c_str());
   }
   if (solid) std::printf("solid                  %s\n", printability_summary(*solid).c_str());
+  if (evenness) print_evenness(*evenness);
 }
 
 } // namespace
@@ -111,13 +151,26 @@ Command add_info_command(CLI::App& parent) {
                                                           "units; thinner is reported as not printable")
       ->check(CLI::NonNegativeNumber)
       ->needs(solid_flag);
+  app->add_option("--curve", args->curve,
+                  "also measure how evenly the closed curves of this file (.obj .ply) cover the mesh: the gap "
+                  "between neighbouring passes and the surface's distance to them");
   return {app, [args] {
             const PolygonMesh mesh = read_mesh(args->input);
             const MeshReport report = inspect(mesh);
             std::optional<PrintabilityReport> solid;
             if (args->solid) solid = check_printability(mesh, {.required_thickness = args->min_thickness});
-            if (args->json) print_json(args->input, report, solid ? &*solid : nullptr);
-            else print_text(args->input, report, solid ? &*solid : nullptr);
+            std::optional<CurveEvenness> evenness;
+            if (!args->curve.empty()) {
+              const Polylines curves = read_polylines(args->curve);
+              // The measure does not know the file; the user should read which one.
+              try {
+                evenness = CurveEvenness{args->curve, curves.size(), measure_evenness(mesh, curves)};
+              } catch (const InputError& e) {
+                throw InputError(args->curve + ": " + e.what());
+              }
+            }
+            if (args->json) print_json(args->input, report, solid ? &*solid : nullptr, evenness ? &*evenness : nullptr);
+            else print_text(args->input, report, solid ? &*solid : nullptr, evenness ? &*evenness : nullptr);
           }};
 }
 

@@ -95,7 +95,7 @@ uint8_t flip_rank(const QuadMesh& m, int32_t q, uint8_t d, uint64_t seed) {
   const double flipped = split_shape(m, q, d ^ 1);
   if (flipped < 0) return Graph::max_rank - 1;
   const double gain = flipped - split_shape(m, q, d);
-  const double dither = double(Random(seed ^ (uint64_t(q) * 0xd1b54a32d192ed03ULL)).next() >> 11) * 0x1p-53;
+  const double dither = Random(seed ^ (uint64_t(q) * 0xd1b54a32d192ed03ULL)).unit();
   return uint8_t(std::clamp(std::floor(steps * (1 - gain) + dither), 0.0, double(Graph::max_rank - 1)));
 }
 

@@ -23,6 +23,9 @@ public:
   // does not matter for picking trees).
   uint32_t below(uint32_t n) { return uint32_t((uint64_t(uint32_t(next() >> 32)) * n) >> 32); }
 
+  // Uniform in [0, 1) from the top 53 bits.
+  double unit() { return double(next() >> 11) * 0x1p-53; }
+
 private:
   uint64_t state_;
 };

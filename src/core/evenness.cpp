@@ -1,0 +1,404 @@
+#include "meander/evenness.h"
+
+#include "meander/error.h"
+#include "random.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace meander {
+
+namespace {
+
+// Issue 34's test for another pass: farther along the curve than 1.4 times the straight
+// distance. A straight stretch has ratio 1; across a hairpin the ratio grows without
+// bound; on a circle the points beyond about 157 degrees count.
+constexpr double kPassRatio = 1.4;
+
+// How far, in spacing estimates, a nearest point is looked for. A grid query visits O(k^3)
+// cells to find a point k cells away, so a surface far from every curve (curves of
+// another mesh, or of only some of its components) would take hours; within this reach
+// it takes at most milliseconds a query.
+constexpr double kReach = 32;
+
+// The automatic step gives at most this many points (about 1 GB of work arrays): a curve
+// of a 10M-triangle mesh would get hundreds of millions at spacing_estimate / 8.
+constexpr double kMaxAutomaticPoints = 1 << 24;
+
+// How far outside the surface's bounding box, in diagonals, a curve may stray before it
+// is taken for a curve of another mesh, whose spacing estimate would mean nothing.
+constexpr double kBoxSlack = 0.1;
+
+std::string curve_name(int32_t k) { return "curve " + std::to_string(k); }
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+void check_input(const PolygonMesh& surface, const Polylines& curves, const EvennessOptions& options) {
+  if (!(options.step >= 0 && std::isfinite(options.step)))
+    throw ParameterError("step", " must be 0 (automatic) or a positive number (got " + number(options.step) + ")");
+  if (options.surface_samples < 1)
+    throw ParameterError("surface_samples",
+                         " must be at least 1 (got " + std::to_string(options.surface_samples) + ")");
+  if (curves.size() < 1) throw InputError("no curves to measure");
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    if (!curves.closed(k)) throw InputError(curve_name(k) + " is open: evenness is measured on closed curves");
+    const auto c = curves.polyline(k);
+    if (c.size() < 3)
+      throw InputError(curve_name(k) + " has " + std::to_string(c.size()) + " point" + (c.size() == 1 ? "" : "s") +
+                       ", fewer than the 3 of a closed curve");
+    for (size_t j = 0; j < c.size(); ++j)
+      if (!is_finite(c[j])) throw InputError(curve_name(k) + ": point " + std::to_string(j) + " is not finite");
+  }
+  for (int32_t v = 0; v < surface.num_vertices(); ++v)
+    if (!is_finite(surface.positions[size_t(v)]))
+      throw InputError("surface vertex " + std::to_string(v) + " has a non-finite position");
+  const Box3 box = bounding_box(surface.positions);
+  const double slack = kBoxSlack * box.diagonal();
+  auto outside = [&](Vec3 p) {
+    return p.x < box.min.x - slack || p.y < box.min.y - slack || p.z < box.min.z - slack || p.x > box.max.x + slack ||
+           p.y > box.max.y + slack || p.z > box.max.z + slack;
+  };
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const auto c = curves.polyline(k);
+    for (size_t j = 0; j < c.size(); ++j)
+      if (outside(c[j]))
+        throw InputError(curve_name(k) + ": point " + std::to_string(j) +
+                         " lies outside the surface's bounding box grown by a tenth of its diagonal: the curves "
+                         "are not on this surface");
+  }
+}
+
+double triangle_area(Vec3 a, Vec3 b, Vec3 c) {
+  const double ux = double(b.x) - a.x, uy = double(b.y) - a.y, uz = double(b.z) - a.z;
+  const double vx = double(c.x) - a.x, vy = double(c.y) - a.y, vz = double(c.z) - a.z;
+  const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
+  return 0.5 * std::sqrt(x * x + y * y + z * z);
+}
+
+// a + (b - a) t, in double, rounded once.
+Vec3 lerp(Vec3 a, Vec3 b, double t) {
+  return {float(a.x + (double(b.x) - a.x) * t), float(a.y + (double(b.y) - a.y) * t),
+          float(a.z + (double(b.z) - a.z) * t)};
+}
+
+double closed_length(std::span<const Vec3> c) {
+  double length = 0;
+  for (size_t j = 0; j < c.size(); ++j) length += norm(c[(j + 1) % c.size()] - c[j]);
+  return length;
+}
+
+// The curves resampled at equal arc-length steps: curve k gets count[k] points,
+// spacing[k] apart along it, its point j at arc length j * spacing[k] from its first.
+struct Resampled {
+  std::vector<Vec3> points;
+  std::vector<int32_t> curve; // of each point
+  std::vector<int32_t> index; // of each point within its curve
+  std::vector<int32_t> count;
+  std::vector<double> spacing;
+};
+
+Resampled resample(const Polylines& curves, std::span<const double> length, double step) {
+  double total = 0;
+  for (double l : length) total += std::max(3.0, std::ceil(l / step));
+  if (!(total < 2147483648.0))
+    throw ParameterError("step", " " + number(step) + " would make 2^31 curve points or more");
+  Resampled r;
+  r.points.reserve(size_t(total));
+  r.curve.reserve(size_t(total));
+  r.index.reserve(size_t(total));
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const auto c = curves.polyline(k);
+    // At least the 3 points of a closed curve, however short.
+    const int32_t m = int32_t(std::max(3.0, std::ceil(length[size_t(k)] / step)));
+    const double h = length[size_t(k)] / m;
+    r.count.push_back(m);
+    r.spacing.push_back(h);
+    size_t segment = 0;
+    double begin = 0, segment_length = norm(c[1] - c[0]);
+    for (int32_t j = 0; j < m; ++j) {
+      const double s = j * h;
+      while (segment + 1 < c.size() && begin + segment_length <= s) {
+        begin += segment_length;
+        ++segment;
+        segment_length = norm(c[(segment + 1) % c.size()] - c[segment]);
+      }
+      const double t = segment_length > 0 ? std::clamp((s - begin) / segment_length, 0.0, 1.0) : 0.0;
+      r.points.push_back(lerp(c[segment], c[(segment + 1) % c.size()], t));
+      r.curve.push_back(k);
+      r.index.push_back(j);
+    }
+  }
+  return r;
+}
+
+// Points in a uniform grid of cubic cells, hashed into a power-of-two table of buckets
+// by a counting sort: bucket b holds the points ids[start[b] .. start[b+1]) at
+// sorted[start[b] .. start[b+1]). Cells that share a bucket share its points, which costs
+// time, never correctness: every point a query looks at is a true candidate.
+class PointGrid {
+public:
+  // `cell` is raised so that the cell coordinates of `box`, which must hold the points
+  // and the queries, fit in 21 bits.
+  PointGrid(std::span<const Vec3> points, double cell, const Box3& box)
+      : origin_(box.min), cell_(std::max(cell, max_side(box) / double(1 << 20))),
+        shift_(64 - std::countr_zero(std::bit_ceil(std::max<size_t>(points.size(), 2)))) {
+    std::vector<uint32_t> bucket(points.size());
+    start_.assign((size_t(1) << (64 - shift_)) + 1, 0);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const auto c = cell_of(points[i]);
+      for (size_t a = 0; a < 3; ++a) {
+        lo_[a] = std::min(lo_[a], c[a]);
+        hi_[a] = std::max(hi_[a], c[a]);
+      }
+      bucket[i] = hash(c[0], c[1], c[2]);
+      ++start_[bucket[i] + 1];
+    }
+    for (size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+    std::vector<int32_t> next(start_.begin(), start_.end() - 1);
+    sorted_.resize(points.size());
+    ids_.resize(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      const int32_t at = next[bucket[i]]++;
+      sorted_[size_t(at)] = points[i];
+      ids_[size_t(at)] = int32_t(i);
+    }
+  }
+
+  // The squared distance from p to the nearest point i within `radius` for which
+  // accept(i, squared distance) holds; INFINITY if there is none. Visits the cells in
+  // rings of growing Chebyshev distance around p's cell until the next ring lies farther
+  // than the best or the radius.
+  template <class Accept> double nearest_squared(Vec3 p, double radius, Accept&& accept) const {
+    const std::array<double, 3> q = {double(p.x) - origin_.x, double(p.y) - origin_.y, double(p.z) - origin_.z};
+    std::array<int64_t, 3> c{};
+    std::array<double, 3> f{}; // p's offset in its cell
+    double margin = INFINITY;  // from p to the nearest face of its cell
+    int64_t first = 0;         // rings nearer than this miss the points' cells
+    for (size_t a = 0; a < 3; ++a) {
+      c[a] = int64_t(std::floor(q[a] / cell_));
+      f[a] = q[a] - double(c[a]) * cell_;
+      margin = std::min({margin, f[a], cell_ - f[a]});
+      first = std::max({first, lo_[a] - c[a], c[a] - hi_[a]});
+    }
+    margin = std::max(margin, 0.0);
+    // From p to the cells of coordinate x on axis a, squared.
+    auto apart = [&](size_t a, int64_t x) {
+      const double d = x < c[a]   ? double(c[a] - x - 1) * cell_ + f[a]
+                       : x > c[a] ? double(x - c[a] - 1) * cell_ + cell_ - f[a]
+                                  : 0.0;
+      return d * d;
+    };
+    const double limit = radius * radius;
+    double best = INFINITY;
+    // Most cells of a ring lie beyond the best point found so far: skipped without a look
+    // at their bucket.
+    auto near = [&](double d2) { return d2 < best && d2 <= limit; };
+    auto visit = [&](int64_t x, int64_t y, int64_t z, double yz) {
+      if (!near(yz + apart(0, x))) return;
+      const uint64_t b = hash(x, y, z);
+      for (int32_t i = start_[b]; i < start_[b + 1]; ++i) {
+        const Vec3 d = sorted_[size_t(i)] - p;
+        const double d2 = dot(d, d);
+        if (d2 < best && accept(ids_[size_t(i)], d2)) best = d2;
+      }
+    };
+    for (int64_t k = first;; ++k) {
+      const int64_t x0 = std::max(c[0] - k, lo_[0]), x1 = std::min(c[0] + k, hi_[0]);
+      const int64_t y0 = std::max(c[1] - k, lo_[1]), y1 = std::min(c[1] + k, hi_[1]);
+      const int64_t z0 = std::max(c[2] - k, lo_[2]), z1 = std::min(c[2] + k, hi_[2]);
+      for (int64_t z = z0; z <= z1; ++z) {
+        const double zz = apart(2, z);
+        if (!near(zz)) continue;
+        for (int64_t y = y0; y <= y1; ++y) {
+          const double yz = zz + apart(1, y);
+          if (!near(yz)) continue;
+          if (z == c[2] - k || z == c[2] + k || y == c[1] - k || y == c[1] + k) {
+            for (int64_t x = x0; x <= x1; ++x) visit(x, y, z, yz);
+          } else {
+            if (c[0] - k >= lo_[0] && c[0] - k <= hi_[0]) visit(c[0] - k, y, z, yz);
+            if (c[0] + k >= lo_[0] && c[0] + k <= hi_[0]) visit(c[0] + k, y, z, yz);
+          }
+        }
+      }
+      // Points in the rings beyond k lie at least k cells and the margin away.
+      const double reach = double(k) * cell_ + margin;
+      if (best <= reach * reach || radius <= reach) break;
+      // Rings 0 .. k hold every cell with points.
+      if (c[0] - k <= lo_[0] && c[0] + k >= hi_[0] && c[1] - k <= lo_[1] && c[1] + k >= hi_[1] && c[2] - k <= lo_[2] &&
+          c[2] + k >= hi_[2])
+        break;
+    }
+    return best <= limit ? best : INFINITY;
+  }
+
+private:
+  static double max_side(const Box3& box) {
+    return std::max({double(box.max.x) - box.min.x, double(box.max.y) - box.min.y, double(box.max.z) - box.min.z});
+  }
+  std::array<int64_t, 3> cell_of(Vec3 p) const {
+    return {int64_t(std::floor((double(p.x) - origin_.x) / cell_)),
+            int64_t(std::floor((double(p.y) - origin_.y) / cell_)),
+            int64_t(std::floor((double(p.z) - origin_.z) / cell_))};
+  }
+  // Fibonacci hashing of the cell's 63-bit key (21 bits a coordinate) into the table.
+  uint64_t hash(int64_t x, int64_t y, int64_t z) const {
+    const uint64_t key = uint64_t(x) | uint64_t(y) << 21 | uint64_t(z) << 42;
+    return (key * 0x9e3779b97f4a7c15ULL) >> shift_;
+  }
+
+  Vec3 origin_;
+  double cell_;
+  int shift_;
+  // The cells that hold points lie in [lo, hi] on each axis.
+  std::array<int64_t, 3> lo_{INT64_MAX, INT64_MAX, INT64_MAX}, hi_{INT64_MIN, INT64_MIN, INT64_MIN};
+  std::vector<int32_t> start_;
+  std::vector<Vec3> sorted_;
+  std::vector<int32_t> ids_;
+};
+
+// The q-quantile of v, interpolated between ranks. Reorders v. O(n).
+double percentile(std::vector<double>& v, double q) {
+  const double at = q * double(v.size() - 1);
+  const size_t i = size_t(at);
+  std::nth_element(v.begin(), v.begin() + ptrdiff_t(i), v.end());
+  if (i + 1 == v.size()) return v[i];
+  const double above = *std::min_element(v.begin() + ptrdiff_t(i) + 1, v.end());
+  return v[i] + (above - v[i]) * (at - double(i));
+}
+
+// Each face's area (its fan of triangles from its first corner), summed in face order.
+std::vector<double> cumulative_areas(const PolygonMesh& surface) {
+  std::vector<double> area(size_t(surface.num_faces()));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, surface.num_faces(), 4096),
+                    [&](const tbb::blocked_range<int32_t>& r) {
+                      for (int32_t f = r.begin(); f < r.end(); ++f) {
+                        const auto v = surface.face(f);
+                        double a = 0;
+                        for (size_t i = 1; i + 1 < v.size(); ++i)
+                          a += triangle_area(surface.positions[size_t(v[0])], surface.positions[size_t(v[i])],
+                                             surface.positions[size_t(v[i + 1])]);
+                        area[size_t(f)] = a;
+                      }
+                    });
+  for (size_t f = 1; f < area.size(); ++f) area[f] += area[f - 1];
+  return area;
+}
+
+// Surface sample s, area-weighted: its own random stream, so that any thread draws it the
+// same. A face is picked by its share of the area, then a triangle of its fan by the
+// rest of the same draw, then a point of the triangle uniformly.
+Vec3 surface_sample(const PolygonMesh& surface, std::span<const double> cumulative, uint64_t seed, int32_t s) {
+  Random random(seed ^ (uint64_t(s) * 0xd1b54a32d192ed03ULL));
+  double u = random.unit() * cumulative.back();
+  auto face = std::upper_bound(cumulative.begin(), cumulative.end(), u);
+  // u rounded up to the total: the last face with area.
+  if (face == cumulative.end()) face = std::lower_bound(cumulative.begin(), cumulative.end(), cumulative.back());
+  const size_t f = size_t(face - cumulative.begin());
+  if (f > 0) u -= cumulative[f - 1];
+  const auto v = surface.face(int32_t(f));
+  const Vec3 a = surface.positions[size_t(v[0])];
+  size_t i = 1;
+  for (; i + 2 < v.size(); ++i) {
+    const double area = triangle_area(a, surface.positions[size_t(v[i])], surface.positions[size_t(v[i + 1])]);
+    if (u < area) break;
+    u -= area;
+  }
+  const Vec3 b = surface.positions[size_t(v[i])], c = surface.positions[size_t(v[i + 1])];
+  const double r = std::sqrt(random.unit()), t = random.unit();
+  const double wa = 1 - r, wb = r * (1 - t), wc = r * t;
+  return {float(wa * a.x + wb * b.x + wc * c.x), float(wa * a.y + wb * b.y + wc * c.y),
+          float(wa * a.z + wb * b.z + wc * c.z)};
+}
+
+} // namespace
+
+EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& curves, const EvennessOptions& options) {
+  check_input(surface, curves, options);
+  std::vector<double> length(size_t(curves.size()));
+  double total_length = 0;
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    length[size_t(k)] = closed_length(curves.polyline(k));
+    if (!(length[size_t(k)] > 0)) throw InputError(curve_name(k) + " has zero length");
+    total_length += length[size_t(k)];
+  }
+  const std::vector<double> cumulative = cumulative_areas(surface);
+  if (cumulative.empty() || !(cumulative.back() > 0)) throw InputError("the surface has no area");
+
+  EvennessReport report;
+  report.spacing_estimate = cumulative.back() / total_length;
+  report.step =
+      options.step > 0 ? options.step : std::max(report.spacing_estimate / 8, total_length / kMaxAutomaticPoints);
+  const Resampled r = resample(curves, length, report.step);
+  report.points = int32_t(r.points.size());
+
+  std::vector<Vec3> samples(size_t(options.surface_samples));
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, options.surface_samples, 1024),
+                    [&](const tbb::blocked_range<int32_t>& range) {
+                      for (int32_t s = range.begin(); s < range.end(); ++s)
+                        samples[size_t(s)] = surface_sample(surface, cumulative, options.seed, s);
+                    });
+  Box3 box;
+  for (Vec3 p : r.points) box.extend(p);
+  for (Vec3 p : samples) box.extend(p);
+  const PointGrid grid(r.points, report.spacing_estimate, box);
+  const double reach = kReach * report.spacing_estimate;
+
+  std::vector<double> gap(r.points.size());
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, report.points, 1024), [&](const tbb::blocked_range<int32_t>& range) {
+    for (int32_t i = range.begin(); i < range.end(); ++i) {
+      const int32_t k = r.curve[size_t(i)];
+      const int32_t m = r.count[size_t(k)];
+      const double limit = kPassRatio * kPassRatio / (r.spacing[size_t(k)] * r.spacing[size_t(k)]);
+      gap[size_t(i)] = std::sqrt(grid.nearest_squared(r.points[size_t(i)], reach, [&](int32_t j, double d2) {
+        if (r.curve[size_t(j)] != k) return true;
+        const int32_t apart = std::abs(r.index[size_t(j)] - r.index[size_t(i)]);
+        const double along = std::min(apart, m - apart);
+        return along * along > limit * d2;
+      }));
+    }
+  });
+  std::erase_if(gap, [](double g) { return std::isinf(g); });
+  report.unpaired = report.points - int32_t(gap.size());
+  if (gap.empty()) throw InputError("no point of the curves has another pass to measure a gap to");
+  double sum = 0;
+  for (double g : gap) sum += g;
+  report.gap_mean = sum / double(gap.size());
+  double squares = 0;
+  for (double g : gap) squares += (g - report.gap_mean) * (g - report.gap_mean);
+  report.gap_cv = report.gap_mean > 0 ? std::sqrt(squares / double(gap.size())) / report.gap_mean : 0;
+  report.gap_median = percentile(gap, 0.5);
+  report.gap_p5 = percentile(gap, 0.05);
+  report.gap_p95 = percentile(gap, 0.95);
+
+  report.surface_samples = options.surface_samples;
+  std::vector<double> coverage(samples.size());
+  std::atomic<bool> uncovered = false; // the rest would each cost the reach's cells
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t s = range.begin(); s < range.end() && !uncovered; ++s) {
+      coverage[s] = std::sqrt(grid.nearest_squared(samples[s], reach, [](int32_t, double) { return true; }));
+      if (std::isinf(coverage[s])) uncovered = true;
+    }
+  });
+  if (uncovered)
+    throw InputError("the curves do not cover the surface: part of it lies farther than " + number(kReach) +
+                     " spacing estimates (" + number(reach) + ") from them");
+  report.coverage_max = *std::max_element(coverage.begin(), coverage.end());
+  report.coverage_p99 = percentile(coverage, 0.99);
+  return report;
+}
+
+} // namespace meander
