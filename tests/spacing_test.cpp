@@ -7,6 +7,7 @@
 
 #include "meander/check.h"
 #include "meander/error.h"
+#include "meander/evenness.h"
 #include "meander/io.h"
 #include "meander/pipeline.h"
 #include "meander/remesh.h"
@@ -53,6 +54,24 @@ TEST(Spacing, OneCurvePerComponentOnTheInputSurface) {
     EXPECT_EQ(result.curves.size(), shape.curves);
     EXPECT_LT(distance_to_surface(result.curves, shape.mesh), 1e-6);
   }
+}
+
+// The spacing asked for is the curve's median gap (evenness.h), within 10%, on closed
+// surfaces of genus 0 to 3 at 1/30 and 1/60 of their diagonal.
+TEST(Spacing, TheMedianGapIsTheSpacing) {
+  const struct {
+    const char* name;
+    PolygonMesh mesh;
+  } shapes[] = {{"sphere", sphere(4000)}, {"torus", torus(4000)}, {"pretzel", genus_surface(2, 6000)},
+                {"genus 3", genus_surface(3, 6000)}};
+  for (const auto& shape : shapes)
+    for (double fraction : {30.0, 60.0}) {
+      SCOPED_TRACE(std::string(shape.name) + " at 1/" + std::to_string(int(fraction)));
+      const double spacing = bounding_box(shape.mesh.positions).diagonal() / fraction;
+      const CurveResult result = make_curve(shape.mesh, CurveJob{.spacing = spacing});
+      const EvennessReport evenness = measure_evenness(shape.mesh, result.curves, {.surface_samples = 1000});
+      EXPECT_NEAR(evenness.gap_median, spacing, 0.1 * spacing);
+    }
 }
 
 TEST(Spacing, AFinerSpacingGivesALongerCurve) {
