@@ -94,7 +94,7 @@ TEST(Remesh, VerticesLieOnTheInputSurface) {
     SCOPED_TRACE(c.name);
     const PolygonMesh result = remesh(c.mesh, {.edge_length = c.edge_length});
     std::vector<Vec3> projected = result.positions;
-    project_onto_surface(c.mesh, projected);
+    ClosestPoints(c.mesh).project(projected);
     double farthest = 0;
     for (size_t v = 0; v < projected.size(); ++v)
       farthest = std::max(farthest, norm(projected[v] - result.positions[v]));
@@ -136,10 +136,10 @@ TEST(Remesh, ATooCoarseLengthIsRefusedNotWrong) {
   }
 }
 
-TEST(ProjectOntoSurface, MovesPointsToTheClosestPoint) {
+TEST(ClosestPoints, MovesPointsToTheClosestPoint) {
   const PolygonMesh square = grid(200); // the unit square in z = 0
   std::vector<Vec3> points = {{0.25f, 0.5f, 0.3f}, {0.7f, 0.1f, -2}, {1.5f, 0.5f, 0}, {-1, -1, 1}};
-  project_onto_surface(square, points);
+  ClosestPoints(square).project(points);
   EXPECT_NEAR(points[0].x, 0.25, 1e-6);
   EXPECT_NEAR(points[0].y, 0.5, 1e-6);
   EXPECT_NEAR(points[0].z, 0, 1e-6);

@@ -22,7 +22,7 @@ namespace {
 // surface's size.
 double distance_to_surface(const Polylines& curves, const PolygonMesh& surface) {
   std::vector<Vec3> projected = curves.points;
-  project_onto_surface(surface, projected);
+  ClosestPoints(surface).project(projected);
   double farthest = 0;
   for (size_t i = 0; i < projected.size(); ++i) farthest = std::max(farthest, norm(projected[i] - curves.points[i]));
   return farthest / bounding_box(surface.positions).diagonal();

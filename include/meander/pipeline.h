@@ -8,6 +8,7 @@
 #include "meander/flip_caps.h"
 #include "meander/hamiltonian.h"
 #include "meander/quadrangulate.h"
+#include "meander/remesh.h"
 
 #include <filesystem>
 #include <optional>
@@ -56,6 +57,8 @@ struct CurveResult {
   QuadMesh quads; // of the remeshed surface with CurveJob::spacing
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
+  // With CurveJob::spacing: the input surface, which the curves lie on (moved there).
+  PolygonMesh surface;
   int64_t points_written = 0; // to CurveJob::output
   // By CurveJob::slab_mesh: polygons split, edges flipped, caps cut off the boundary,
   // needles' edges collapsed.
@@ -67,11 +70,12 @@ struct CurveResult {
 double spacing_edge_length(double spacing, Quadrangulation quadrangulation);
 
 // The even remesh (remesh.h) of a mesh that repair() accepted, on which a curve made
-// with this quadrangulation has passes `spacing` apart. Throws ParameterError for quad
-// none (a remeshed surface has no quads) or a spacing not smaller than the model, and
-// what remesh throws (max_faces: see RemeshOptions).
+// with this quadrangulation has passes `spacing` apart; `input`, if given, is
+// ClosestPoints(mesh), built otherwise. Throws ParameterError for quad none (a remeshed
+// surface has no quads) or a spacing not smaller than the model, and what remesh
+// throws (max_faces: see RemeshOptions).
 PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation,
-                              int64_t max_faces = 0);
+                              int64_t max_faces = 0, const ClosestPoints* input = nullptr);
 
 // Runs the remeshing (with CurveJob::spacing), connectivity, quadrangulation, the cycle,
 // control points and smoothing on a mesh that repair() accepted. Takes the mesh by value so its memory is released as soon as

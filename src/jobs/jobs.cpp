@@ -111,11 +111,20 @@ TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const 
   return surface;
 }
 
+namespace {
+
+// The surface a curve lies on: the triangulated quad mesh it was built on (on non-planar
+// polygons a fan of the input faces would cut through the curve), or the input surface
+// it was moved onto (CurveJob::spacing), whose faces the projection fanned.
+PolygonMesh curve_surface(const CurveResult& curve) {
+  return curve.surface.num_faces() > 0 ? curve.surface : cycle_triangles(curve.quads, curve.cycle);
+}
+
+} // namespace
+
 Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {
   Scene scene;
-  // The occluder is the triangulated quad mesh the curve was built on: on non-planar
-  // polygons a fan of the input faces would cut through the curve.
-  scene.meshes.push_back({.mesh = cycle_triangles(curve.quads, curve.cycle), .color = surface_color, .style = occluder});
+  scene.meshes.push_back({.mesh = curve_surface(curve), .color = surface_color, .style = occluder});
   scene.curves.push_back({.curves = curve.curves});
   return scene;
 }
@@ -124,7 +133,7 @@ Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, Me
   Scene scene;
   scene.meshes.push_back({.mesh = std::move(wire), .color = wire_color});
   if (shape == WireShape::wire)
-    scene.meshes.push_back({.mesh = cycle_triangles(curve.quads, curve.cycle), .color = surface_color, .style = occluder});
+    scene.meshes.push_back({.mesh = curve_surface(curve), .color = surface_color, .style = occluder});
   return scene;
 }
 

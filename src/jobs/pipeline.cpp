@@ -5,7 +5,6 @@
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/parameters.h"
-#include "meander/remesh.h"
 #include "meander/star_polygons.h"
 
 #include <chrono>
@@ -39,7 +38,8 @@ double spacing_edge_length(double spacing, Quadrangulation) {
   return spacing / gap_per_edge;
 }
 
-PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation, int64_t max_faces) {
+PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation, int64_t max_faces,
+                              const ClosestPoints* input) {
   if (quadrangulation == Quadrangulation::none)
     throw ParameterError(parameters::spacing.name, " remeshes the surface into triangles, which quad none cannot take "
                                                    "(it needs a mesh of quads)");
@@ -47,7 +47,8 @@ PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangu
     throw ParameterError(parameters::spacing.name, " " + parameter_text(parameters::spacing, std::optional(spacing)) +
                                                        " is not smaller than the model (its largest side is " +
                                                        parameter_text(parameters::spacing, std::optional(size)) + ")");
-  return remesh(mesh, {.edge_length = spacing_edge_length(spacing, quadrangulation), .max_faces = max_faces});
+  const RemeshOptions options{.edge_length = spacing_edge_length(spacing, quadrangulation), .max_faces = max_faces};
+  return input ? remesh(mesh, options, *input) : remesh(mesh, options);
 }
 
 CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times) {
@@ -59,9 +60,11 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   CurveResult result;
   // The input surface, onto which the curve made on its remeshed version is moved.
   PolygonMesh surface;
+  std::optional<ClosestPoints> on_surface;
   if (job.spacing) {
     surface = std::move(mesh);
-    mesh = remesh_to_spacing(surface, *job.spacing, job.quadrangulation, job.max_faces);
+    on_surface.emplace(surface);
+    mesh = remesh_to_spacing(surface, *job.spacing, job.quadrangulation, job.max_faces, &*on_surface);
     connectivity = Connectivity();
     watch.lap("remesh");
   }
@@ -119,7 +122,8 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
     watch.lap("smooth");
     if (job.spacing) {
-      project_onto_surface(surface, result.curves.points);
+      on_surface->project(result.curves.points);
+      result.surface = std::move(surface);
       watch.lap("project");
     }
     if (!job.output.empty()) {

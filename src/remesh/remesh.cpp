@@ -10,6 +10,8 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <meshoptimizer.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -195,6 +197,30 @@ std::string describe(const std::vector<std::tuple<int64_t, int32_t, bool>>& comp
          (loops == 1 ? "" : "s");
 }
 
+// A triangle mesh of many more faces than `faces` simplified to about that many
+// (meshoptimizer, its boundary kept), so that CGAL's remeshing, which the projection
+// onto the input keeps on the surface, starts from fewer; the mesh itself where it has
+// polygons, is no larger, or would change topology.
+PolygonMesh coarsened(const PolygonMesh& mesh, int64_t faces) {
+  if (int64_t(mesh.num_faces()) <= faces || mesh.face_vertices.size() != 3 * size_t(mesh.num_faces())) return mesh;
+  const std::vector<uint32_t> indices(mesh.face_vertices.begin(), mesh.face_vertices.end());
+  std::vector<uint32_t> kept(indices.size());
+  // The error bound is the face count's: the projection restores the shape.
+  kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
+                               sizeof(Vec3), size_t(3 * faces), 1.0f, meshopt_SimplifyLockBorder, nullptr));
+  PolygonMesh result;
+  std::vector<int32_t> index(mesh.positions.size(), -1);
+  for (uint32_t v : kept) {
+    if (index[v] < 0) {
+      index[v] = result.num_vertices();
+      result.positions.push_back(mesh.positions[v]);
+    }
+    result.face_vertices.push_back(index[v]);
+    if (result.face_vertices.size() % 3 == 0) result.face_start.push_back(int32_t(result.face_vertices.size()));
+  }
+  return topology(result) == topology(mesh) ? result : mesh;
+}
+
 } // namespace
 
 double surface_area(const PolygonMesh& mesh) {
@@ -222,13 +248,19 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options) {
   const double length = options.edge_length;
   if (!(length > 0) || !std::isfinite(length))
     throw ParameterError("edge_length", " must be a positive number (got " + std::to_string(length) + ")");
-  if (options.max_faces > 0) {
-    if (const int64_t faces = remeshed_faces_estimate(mesh, length); faces > options.max_faces)
-      throw InputError("the remeshed surface would have about " + std::to_string(faces) + " faces, over the limit of " +
-                       std::to_string(options.max_faces) + ": choose a larger spacing");
-  }
+  return remesh(mesh, options, ClosestPoints(mesh));
+}
+
+PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const ClosestPoints& input) {
+  const double length = options.edge_length;
+  if (!(length > 0) || !std::isfinite(length))
+    throw ParameterError("edge_length", " must be a positive number (got " + std::to_string(length) + ")");
+  const int64_t estimate = remeshed_faces_estimate(mesh, length);
+  if (options.max_faces > 0 && estimate > options.max_faces)
+    throw InputError("the remeshed surface would have about " + std::to_string(estimate) + " faces, over the limit of " +
+                     std::to_string(options.max_faces) + ": choose a larger spacing");
   // CGAL keeps protected edges no longer than 4/3 of the target.
-  const CutMesh cut = cut_open(mesh, length * 4 / 3);
+  const CutMesh cut = cut_open(coarsened(mesh, 8 * estimate), length * 4 / 3);
   const PolygonMesh& open = cut.mesh;
   auto copy_of = [&cut](int32_t v) { return cut.original.empty() ? v : cut.original[size_t(v)]; };
 
@@ -258,7 +290,13 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options) {
   // Orientable components: boundaries split and collapsed like the rest.
   // Components cut open: their boundary (seam included) kept, so that the
   // seam's sides still match.
-  const auto np = CGAL::parameters::number_of_iterations(unsigned(options.iterations));
+  // Every vertex made or moved goes onto the input surface, not the coarsened one.
+  const auto onto_input = [&](SurfaceMesh::Vertex_index v) {
+    const auto& p = surface.point(v);
+    const Vec3d q = input.closest({p.x(), p.y(), p.z()});
+    return Kernel::Point_3(q.x, q.y, q.z);
+  };
+  const auto np = CGAL::parameters::number_of_iterations(unsigned(options.iterations)).projection_functor(onto_input);
   PMP::isotropic_remeshing(whole, length, surface, np);
   PMP::isotropic_remeshing(opened, length, surface, np.protect_constraints(true));
 

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Regenerates the figures of docs/density.md with Meander itself: a scan (the kitten of
+# ../shared/meshes) at its own density and at three spacings, and the evenness table.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+meander=${MEANDER:-build/meander}
+meshes=${MESHES:-../shared/meshes}
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+kitten="$meshes/kitten.off"
+picture=(--size 640x640 --view front --fit --occluder-style shaded)
+"$meander" curve "$kitten" -o "$scratch/own.ply" --png docs/images/density_kitten_own.png "${picture[@]}"
+"$meander" info "$kitten" --curve "$scratch/own.ply" | grep -E "gap|coverage"
+# The kitten's bounding-box diagonal is 2.66 of its units: 1/30, 1/60, 1/120 of it.
+for fraction in 30 60 120; do
+  spacing=$(python3 -c "print(round(2.66 / $fraction, 4))")
+  "$meander" curve "$kitten" -o "$scratch/$fraction.ply" --spacing "$spacing" \
+    --png "docs/images/density_kitten_$fraction.png" "${picture[@]}"
+  echo "spacing $spacing (1/$fraction of the diagonal):"
+  "$meander" info "$kitten" --curve "$scratch/$fraction.ply" | grep -E "gap|coverage"
+done

@@ -1,0 +1,33 @@
+// Closest points of a surface: where the points of a curve made on a remeshed surface go
+// back onto the input (remesh.h, CurveJob::spacing).
+#pragma once
+
+#include "meander/mesh.h"
+
+#include <memory>
+#include <span>
+
+namespace meander {
+
+// An AABB tree (CGAL) of a surface's faces, each polygon fanned from its first vertex
+// as the writers triangulate it; built once, then queried from any thread.
+class ClosestPoints {
+public:
+  // O(n log n) for n faces. The surface may be empty (then queries leave points alone).
+  explicit ClosestPoints(const PolygonMesh& surface);
+  ~ClosestPoints();
+  ClosestPoints(ClosestPoints&&) noexcept;
+  ClosestPoints& operator=(ClosestPoints&&) noexcept;
+
+  // The closest point of the surface to p, in double precision. O(log n) typically.
+  Vec3d closest(Vec3d p) const;
+  // Moves each point to the closest point of the surface: in parallel, and the same
+  // result whatever the number of threads.
+  void project(std::span<Vec3> points) const;
+
+private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
+} // namespace meander
