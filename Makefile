@@ -71,10 +71,15 @@ sanitize-config: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-16 \
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" -DMEANDER_BUILD_FUZZ=ON > /dev/null
 
+# The sanitized run leaves out the tests that repeat a whole pipeline on each large real
+# mesh or scan (a third of its time, measured: 323 of 904 s): the Release run checks
+# them, and the same code runs under the sanitizers on generated shapes, the small real
+# meshes of the other tests and the corpora. SANITIZE_SKIP= runs everything.
+SANITIZE_SKIP ?= Index/CurveOnRealMesh|RealMeshes/|VariableWireAtDefaultLevelsOnCoarseMeshes|VariableWireOnAScan|DenseRibbonsDoNotSelfIntersect|AgreesWithCgalOnRealMeshes
 test-sanitize: sanitize-config validator
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --output-on-failure -j $(JOBS) \
-	  $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)')
+	  $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)') $(if $(SANITIZE_SKIP),-E '$(SANITIZE_SKIP)')
 
 fuzz: sanitize-config
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target fuzzers

@@ -27,20 +27,17 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-// An orientable mesh made of the input by cutting its non-orientable components
-// along a seam, with what is needed to glue them back.
+// An orientable mesh made of the input by cutting its non-orientable components along a
+// seam, with what is needed to glue them back.
 struct CutMesh {
   PolygonMesh mesh;
-  std::vector<int32_t> original; // per vertex: the vertex it is a copy of
-                                 // (itself if none); empty if nothing was cut
-  std::vector<uint8_t> was_cut;  // per vertex: of a component that was cut open;
-                                 // empty if none was
+  std::vector<int32_t> original; // per vertex: the vertex it copies (itself if none); empty if nothing was cut
+  std::vector<uint8_t> was_cut;  // per vertex: of a component cut open; empty if none was
 };
 
-// Faces oriented by a search across edges, each face agreeing with the one it
-// was reached from; the edges where two faces still disagree are the seam of a
-// non-orientable component. On an orientable mesh, whose faces repair() made
-// agree, nothing is flipped.
+// Faces oriented by a search across edges, each face agreeing with the one it was reached
+// from; the edges where two faces still disagree are the seam of a non-orientable
+// component. On an orientable mesh, whose faces repair() made agree, nothing is flipped.
 struct Orientation {
   std::vector<uint8_t> flip;      // per face
   std::vector<int32_t> component; // per face
@@ -53,8 +50,8 @@ Orientation orient(const PolygonMesh& mesh, const Connectivity& c) {
   Orientation o{.flip = std::vector<uint8_t>(size_t(faces), 0),
                 .component = std::vector<int32_t>(size_t(faces), -1),
                 .seam = std::vector<uint8_t>(size_t(c.num_edges()), 0)};
-  // Whether halfedge h runs from the lower vertex of its edge to the higher,
-  // its face flipped or not.
+  // Whether halfedge h runs from the lower vertex of its edge to the higher, its face
+  // flipped or not.
   auto forward = [&](int32_t h) {
     return (mesh.face_vertices[size_t(h)] == c.edge_vertices[size_t(c.halfedge_edge[size_t(h)])][0]) !=
            bool(o.flip[size_t(c.face_of(h))]);
@@ -88,11 +85,10 @@ Orientation orient(const PolygonMesh& mesh, const Connectivity& c) {
   return o;
 }
 
-// The mesh with its non-orientable components cut open along their seams, each
-// vertex on a seam copied once per side. CGAL then keeps the boundary edges of
-// those components as they are (protected), so that the two sides of a seam
-// stay alike: these edges are split first into pieces no longer than `longest`,
-// at the same points on both sides.
+// The mesh with its non-orientable components cut open along their seams, each vertex on
+// a seam copied once per side. CGAL then keeps the boundary edges of those components as
+// they are (protected), so that the two sides of a seam stay alike: these edges are split
+// first into pieces no longer than `longest`, at the same points on both sides.
 CutMesh cut_open(const PolygonMesh& mesh, double longest) {
   const Connectivity c = build_connectivity(mesh);
   const Orientation o = orient(mesh, c);
@@ -101,8 +97,7 @@ CutMesh cut_open(const PolygonMesh& mesh, double longest) {
     cut.mesh = mesh;
     return cut;
   }
-  // Faces flipped as oriented, the points of each split edge inserted where it
-  // runs.
+  // Faces flipped as oriented, the points of each split edge inserted where it runs.
   PolygonMesh& m = cut.mesh;
   m.positions = mesh.positions;
   std::vector<int32_t> edge_points(size_t(c.num_edges()) + 1,
@@ -141,8 +136,7 @@ CutMesh cut_open(const PolygonMesh& mesh, double longest) {
     if (o.flip[size_t(f)]) std::reverse(m.face_vertices.begin() + ptrdiff_t(face_begin), m.face_vertices.end());
     m.face_start.push_back(int32_t(m.face_vertices.size()));
   }
-  // Each vertex gets a copy per fan of its corners joined across edges off the
-  // seam.
+  // Each vertex gets a copy per fan of its corners joined across edges off the seam.
   const Connectivity split = build_connectivity(m);
   std::vector<uint8_t> is_seam(size_t(split.num_edges()), 0);
   for (const std::array<int32_t, 2>& key : seam_pieces)
@@ -198,8 +192,8 @@ std::string describe(const std::vector<std::tuple<int64_t, int32_t, bool>>& comp
 }
 
 // A triangle mesh of many more faces than `faces` simplified to about that many
-// (meshoptimizer, its boundary kept), so that CGAL's remeshing, which the projection
-// onto the input keeps on the surface, starts from fewer; the mesh itself where it has
+// (meshoptimizer, its boundary kept), so that CGAL's remeshing, which the projection onto
+// the input keeps on the surface, starts from fewer; the mesh itself where it has
 // polygons, is no larger, or would change topology.
 PolygonMesh coarsened(const PolygonMesh& mesh, int64_t faces) {
   if (int64_t(mesh.num_faces()) <= faces || mesh.face_vertices.size() != 3 * size_t(mesh.num_faces())) return mesh;
@@ -221,6 +215,11 @@ PolygonMesh coarsened(const PolygonMesh& mesh, int64_t faces) {
   return topology(result) == topology(mesh) ? result : mesh;
 }
 
+void check_edge_length(double length) {
+  if (!(length > 0) || !std::isfinite(length))
+    throw ParameterError("edge_length", " must be a positive number (got " + std::to_string(length) + ")");
+}
+
 } // namespace
 
 double surface_area(const PolygonMesh& mesh) {
@@ -236,25 +235,21 @@ double surface_area(const PolygonMesh& mesh) {
 }
 
 int64_t remeshed_faces_estimate(const PolygonMesh& mesh, double edge_length) {
-  // CGAL keeps edges between 4/5 and 4/3 of the target, most of them shorter:
-  // measured, 1.1 to 1.36 times as many faces as equilateral triangles of the
-  // target's side.
+  // CGAL keeps edges between 4/5 and 4/3 of the target, most of them shorter: measured,
+  // 1.1 to 1.36 times as many faces as equilateral triangles of the target's side.
   constexpr double measured = 1.4;
   const double faces = measured * surface_area(mesh) / (std::sqrt(3.0) / 4 * edge_length * edge_length);
   return faces < 9e18 ? int64_t(std::ceil(faces)) : INT64_MAX;
 }
 
 PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options) {
-  const double length = options.edge_length;
-  if (!(length > 0) || !std::isfinite(length))
-    throw ParameterError("edge_length", " must be a positive number (got " + std::to_string(length) + ")");
+  check_edge_length(options.edge_length); // before the tree is built
   return remesh(mesh, options, ClosestPoints(mesh));
 }
 
 PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const ClosestPoints& input) {
   const double length = options.edge_length;
-  if (!(length > 0) || !std::isfinite(length))
-    throw ParameterError("edge_length", " must be a positive number (got " + std::to_string(length) + ")");
+  check_edge_length(length);
   const int64_t estimate = remeshed_faces_estimate(mesh, length);
   if (options.max_faces > 0 && estimate > options.max_faces)
     throw InputError("the remeshed surface would have about " + std::to_string(estimate) + " faces, over the limit of " +
@@ -280,16 +275,12 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
       throw TopologyError("remeshing: face " + std::to_string(f) + " does not fit an oriented manifold surface");
   }
   if (!PMP::triangulate_faces(surface))
-    throw TopologyError("remeshing: a polygon of the mesh could not be "
-                        "triangulated (degenerate)");
+    throw TopologyError("remeshing: a polygon of the mesh could not be triangulated (degenerate)");
   std::vector<SurfaceMesh::Face_index> whole, opened;
   for (SurfaceMesh::Face_index f : surface.faces()) {
     const int32_t v = origin[surface.target(surface.halfedge(f))];
     (!cut.was_cut.empty() && cut.was_cut[size_t(v)] ? opened : whole).push_back(f);
   }
-  // Orientable components: boundaries split and collapsed like the rest.
-  // Components cut open: their boundary (seam included) kept, so that the
-  // seam's sides still match.
   // Every vertex made or moved goes onto the input surface, not the coarsened one.
   const auto onto_input = [&](SurfaceMesh::Vertex_index v) {
     const auto& p = surface.point(v);
@@ -297,11 +288,12 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
     return Kernel::Point_3(q.x, q.y, q.z);
   };
   const auto np = CGAL::parameters::number_of_iterations(unsigned(options.iterations)).projection_functor(onto_input);
+  // Orientable components: boundaries split and collapsed like the rest. Components cut
+  // open: their boundary (seam included) kept, so that the seam's sides still match.
   PMP::isotropic_remeshing(whole, length, surface, np);
   PMP::isotropic_remeshing(opened, length, surface, np.protect_constraints(true));
 
-  // Back to a polygon mesh, the two sides of each seam glued into one vertex
-  // again.
+  // Back to a polygon mesh, the two sides of each seam glued into one vertex again.
   PolygonMesh result;
   std::vector<int32_t> index(surface.num_vertices() + surface.number_of_removed_vertices(), -1);
   std::vector<int32_t> glued(open.positions.size(), -1);
@@ -326,8 +318,7 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
   if (const auto before = topology(mesh), after = topology(result); before != after)
     throw TopologyError("remeshing at edge length " + std::to_string(length) + " changed the surface's topology (" +
                         describe(before) + " before, " + describe(after) +
-                        " after): a part is thinner than the spacing; choose a "
-                        "smaller spacing");
+                        " after): a part is thinner than the spacing; choose a smaller spacing");
   return result;
 }
 
