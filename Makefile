@@ -60,7 +60,7 @@ FUZZ_SECONDS ?= 60
 # `make test` (fuzz-check) runs every seed of each fuzz target (tests/corpus,
 # tests/regressions, the small shared meshes) under the sanitizers, then this many inputs
 # more from a fixed seed: a count, not a time, so that a busy machine runs the same ones.
-FUZZ_RUNS ?= 10000
+FUZZ_RUNS ?= 5000
 # Which tests test-sanitize runs (a ctest -R regex; empty: all of them).
 SANITIZE_TESTS ?=
 
