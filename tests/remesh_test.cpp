@@ -2,6 +2,7 @@
 #include "meander/error.h"
 #include "meander/remesh.h"
 #include "meander/shapes.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -47,12 +48,7 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  PolygonMesh two = sphere(800);
-  const PolygonMesh ring = torus(800);
-  const int32_t offset = two.num_vertices(), corners = two.num_corners();
-  for (Vec3 p : ring.positions) two.positions.push_back(p + Vec3{3, 0, 0});
-  for (int32_t v : ring.face_vertices) two.face_vertices.push_back(v + offset);
-  for (size_t f = 1; f < ring.face_start.size(); ++f) two.face_start.push_back(corners + ring.face_start[f]);
+  const PolygonMesh two = test::side_by_side(sphere(800), torus(800), {3, 0, 0});
   return {{"sphere", sphere(2000), 0.12},
           {"torus", torus(3000), 0.08},
           {"genus 2", genus_surface(2, 4000), 0.15},

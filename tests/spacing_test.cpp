@@ -29,12 +29,7 @@ double distance_to_surface(const Polylines& curves, const PolygonMesh& surface) 
 }
 
 TEST(Spacing, OneCurvePerComponentOnTheInputSurface) {
-  PolygonMesh two = sphere(600);
-  const PolygonMesh ring = torus(600);
-  const int32_t offset = two.num_vertices(), corners = two.num_corners();
-  for (Vec3 p : ring.positions) two.positions.push_back(p + Vec3{3, 0, 0});
-  for (int32_t v : ring.face_vertices) two.face_vertices.push_back(v + offset);
-  for (size_t f = 1; f < ring.face_start.size(); ++f) two.face_start.push_back(corners + ring.face_start[f]);
+  const PolygonMesh two = side_by_side(sphere(600), torus(600), {3, 0, 0});
   const struct {
     const char* name;
     PolygonMesh mesh;

@@ -103,6 +103,14 @@ CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64
   return result;
 }
 
+PolygonMesh side_by_side(PolygonMesh a, const PolygonMesh& b, Vec3 shift) {
+  const int32_t offset = a.num_vertices(), corners = a.num_corners();
+  for (Vec3 p : b.positions) a.positions.push_back(p + shift);
+  for (int32_t v : b.face_vertices) a.face_vertices.push_back(v + offset);
+  for (size_t f = 1; f < b.face_start.size(); ++f) a.face_start.push_back(corners + b.face_start[f]);
+  return a;
+}
+
 std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f) {
   const auto v = mesh.face(f);
   std::array<double, 3> angles{};

@@ -18,6 +18,9 @@ namespace meander::test {
 // ../shared/meshes (set by CMake); tests that need it skip when it is absent.
 std::filesystem::path shared_meshes();
 
+// Both meshes in one, b's vertices moved by `shift`: a mesh of several components.
+PolygonMesh side_by_side(PolygonMesh a, const PolygonMesh& b, Vec3 shift);
+
 // The angles of triangle f at its three corners, in degrees.
 std::array<double, 3> triangle_angles_degrees(const PolygonMesh& mesh, int32_t f);
 
