@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the figures of docs/density.md with Meander itself: a scan (the kitten of
-# ../shared/meshes) at its own density and at three spacings, and the evenness table.
+# ../shared/meshes) at its own density and at three spacings, at 1/60 also unrelaxed, and
+# the evenness table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 meander=${MEANDER:-build/meander}
@@ -19,3 +20,8 @@ for fraction in 30 60 120; do
   echo "spacing $spacing (1/$fraction of the diagonal):"
   "$meander" info "$kitten" --curve "$scratch/$fraction.ply" | grep -E "gap|coverage"
 done
+# The curve at 1/60 as made on the even mesh (--relax 0), before the relaxation evens it.
+"$meander" curve "$kitten" -o "$scratch/raw.ply" --spacing 0.0443 --relax 0 \
+  --png docs/images/density_kitten_60_unrelaxed.png "${picture[@]}"
+echo "spacing 0.0443 without relaxation:"
+"$meander" info "$kitten" --curve "$scratch/raw.ply" | grep -E "gap|coverage"

@@ -66,9 +66,9 @@ TEST(Jobs, CliAndStudioTakeTheSameParameters) {
   EXPECT_EQ(listed["curve"].size(), parameters_of<CurveJob>().size());
   EXPECT_EQ(listed["wire"].size(), parameters_of<WireJob>().size() - 2); // the mode is the method and shape
   EXPECT_EQ(listed["duotone"].size(), parameters_of<DuotoneJob>().size());
-  EXPECT_EQ(listed["curve"][5]["name"], "samples");
-  EXPECT_EQ(listed["curve"][5]["max"], 1000);
-  EXPECT_EQ(listed["curve"][5]["default"], "4");
+  EXPECT_EQ(listed["curve"][6]["name"], "samples");
+  EXPECT_EQ(listed["curve"][6]["max"], 1000);
+  EXPECT_EQ(listed["curve"][6]["default"], "4");
   EXPECT_EQ(listed["curve"][0]["name"], "spacing");
   EXPECT_EQ(listed["curve"][0]["default"], "none");
 }

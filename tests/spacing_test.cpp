@@ -51,21 +51,32 @@ TEST(Spacing, OneCurvePerComponentOnTheInputSurface) {
   }
 }
 
-// The spacing asked for is the curve's median gap (evenness.h), within 10%, on closed
-// surfaces of genus 0 to 3 at 1/30 and 1/60 of their diagonal.
-TEST(Spacing, TheMedianGapIsTheSpacing) {
+// The spacing asked for is the curve's median gap (evenness.h), within 10%, and the gaps
+// are even (issue 34's targets: CV at most 0.12, the 5th percentile at least 0.75 of the
+// spacing), on surfaces of genus 0 to 3 and with a boundary at 1/30 and 1/60 of their
+// diagonal. No surface point lies farther than 1.3 spacings from the curve on a closed
+// surface, 2 on the square, whose corners the curve rounds (the issue's target of 0.8 is
+// not reached yet: junctions of branches leave pockets).
+TEST(Spacing, TheGapsAreEvenAndTheirMedianIsTheSpacing) {
   const struct {
     const char* name;
     PolygonMesh mesh;
-  } shapes[] = {{"sphere", sphere(4000)}, {"torus", torus(4000)}, {"pretzel", genus_surface(2, 6000)},
-                {"genus 3", genus_surface(3, 6000)}};
+    double coverage;
+  } shapes[] = {{"sphere", sphere(4000), 1.3},
+                {"torus", torus(4000), 1.3},
+                {"pretzel", genus_surface(2, 6000), 1.3},
+                {"genus 3", genus_surface(3, 6000), 1.3},
+                {"grid", grid(4000), 2}};
   for (const auto& shape : shapes)
     for (double fraction : {30.0, 60.0}) {
       SCOPED_TRACE(std::string(shape.name) + " at 1/" + std::to_string(int(fraction)));
       const double spacing = bounding_box(shape.mesh.positions).diagonal() / fraction;
       const CurveResult result = make_curve(shape.mesh, CurveJob{.spacing = spacing});
-      const EvennessReport evenness = measure_evenness(shape.mesh, result.curves, {.surface_samples = 1000});
+      const EvennessReport evenness = measure_evenness(shape.mesh, result.curves, {.surface_samples = 20000});
       EXPECT_NEAR(evenness.gap_median, spacing, 0.1 * spacing);
+      EXPECT_LE(evenness.gap_cv, 0.12);
+      EXPECT_GE(evenness.gap_p5, 0.75 * spacing);
+      EXPECT_LE(evenness.coverage_max, shape.coverage * spacing);
     }
 }
 

@@ -21,6 +21,15 @@ public:
 
   // The closest point of the surface to p, in double precision. O(log n) typically.
   Vec3d closest(Vec3d p) const;
+  struct Hit {
+    Vec3d point;
+    Vec3d normal; // of the triangle the point lies on, unit length (zero for a degenerate one)
+    int32_t triangle = -1; // which one, for a hint; -1 on an empty surface
+  };
+  // The same with that triangle's normal. A hit near p (the last one of a point that
+  // moves a little) makes the query several times as fast.
+  Hit closest_hit(Vec3d p) const;
+  Hit closest_hit(Vec3d p, const Hit& hint) const;
   // Moves each point to the closest point of the surface: in parallel, and the same
   // result whatever the number of threads.
   void project(std::span<Vec3> points) const;

@@ -73,6 +73,11 @@ inline constexpr Parameter spacing{.name = "spacing",
                                    .help = "the distance between neighbouring passes of the curve, in mesh units: the "
                                            "surface is first remeshed evenly to it (none: the mesh's own edges)",
                                    .choices = spacing_choices};
+inline constexpr Parameter relax{.name = "relax",
+                                 .help = "with --spacing: rounds of evening the gaps between the curve's passes on the "
+                                         "surface (0: the curve as made on the even mesh)",
+                                 .min = 0,
+                                 .max = 200};
 
 inline constexpr Parameter method{.name = "method",
                                   .help = "constant: a polygon or line swept along the smooth curve; variable: trapezoids "
@@ -131,6 +136,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
   static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob>);
   if constexpr (std::is_same_v<Plain, CurveJob>) {
     visit(parameters::spacing, job.spacing);
+    visit(parameters::relax, job.relax);
     visit(parameters::quad, job.quadrangulation);
     visit(parameters::tree, job.cycle.tree);
     visit(parameters::seed, job.cycle.seed);

@@ -8,6 +8,7 @@
 #include "meander/flip_caps.h"
 #include "meander/hamiltonian.h"
 #include "meander/quadrangulate.h"
+#include "meander/relax.h"
 #include "meander/remesh.h"
 
 #include <filesystem>
@@ -33,6 +34,8 @@ struct CurveJob {
   // passes of the curve lie about this far apart, and the curve's points are then moved
   // onto the input surface; none: the curve follows the input's own faces.
   std::optional<double> spacing;
+  // With spacing: rounds of relax_curves (relax.h) that even the gaps between passes.
+  int relax = RelaxOptions{}.iterations;
   // With spacing: refuse (InputError) a remeshed surface estimated at more faces; 0: no limit.
   int64_t max_faces = 0;
   Quadrangulation quadrangulation = Quadrangulation::dual_simplest;

@@ -122,9 +122,12 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
     watch.lap("smooth");
     if (job.spacing) {
-      on_surface->project(result.curves.points);
+      if (job.relax > 0)
+        result.curves = relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax});
+      else
+        on_surface->project(result.curves.points);
       result.surface = std::move(surface);
-      watch.lap("project");
+      watch.lap(job.relax > 0 ? "relax" : "project");
     }
     if (!job.output.empty()) {
       write_polylines(result.curves, job.output);

@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <vector>
 
 namespace meander {
@@ -49,6 +50,32 @@ Vec3d ClosestPoints::closest(Vec3d p) const {
   if (tree_->triangles.empty()) return p;
   const Kernel::Point_3 q = tree_->tree.closest_point(Kernel::Point_3(p.x, p.y, p.z));
   return {q.x(), q.y(), q.z()};
+}
+
+namespace {
+
+ClosestPoints::Hit hit(const std::pair<Kernel::Point_3, std::vector<Triangle>::const_iterator>& found,
+                       const std::vector<Triangle>& triangles) {
+  const auto& [q, triangle] = found;
+  const Kernel::Vector_3 n = CGAL::normal(triangle->vertex(0), triangle->vertex(1), triangle->vertex(2));
+  const double length = std::sqrt(n.squared_length());
+  const Vec3d normal = length > 0 ? Vec3d{n.x() / length, n.y() / length, n.z() / length} : Vec3d{};
+  return {{q.x(), q.y(), q.z()}, normal, int32_t(triangle - triangles.begin())};
+}
+
+} // namespace
+
+ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p) const {
+  if (tree_->triangles.empty()) return {p, {}};
+  return hit(tree_->tree.closest_point_and_primitive(Kernel::Point_3(p.x, p.y, p.z)), tree_->triangles);
+}
+
+ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint) const {
+  if (hint.triangle < 0 || size_t(hint.triangle) >= tree_->triangles.size()) return closest_hit(p);
+  const Kernel::Point_3 near(hint.point.x, hint.point.y, hint.point.z);
+  return hit(tree_->tree.closest_point_and_primitive(Kernel::Point_3(p.x, p.y, p.z),
+                                                     {near, tree_->triangles.cbegin() + hint.triangle}),
+             tree_->triangles);
 }
 
 void ClosestPoints::project(std::span<Vec3> points) const {

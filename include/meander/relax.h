@@ -1,0 +1,30 @@
+// Evening out the passes of closed curves that cover a surface (issue 34, "Evenness"):
+// a curve made on an even remesh has passes whose gaps still vary by a fifth (CV 0.20);
+// here each point moves across the surface toward the middle of the passes on either
+// side of it, half a spacing from the surface's boundary, so the gaps even out and holes
+// close, and no point ever moves more than a quarter of the way to another pass, so the
+// curves never cross themselves or each other. The order of the points stays the
+// cycle's.
+#pragma once
+
+#include "meander/closest_points.h"
+#include "meander/mesh.h"
+
+namespace meander {
+
+struct RelaxOptions {
+  double spacing = 0; // the gap wanted between neighbouring passes, > 0, in mesh units
+  int iterations = 20;
+};
+
+// Closed curves whose points lie on `surface` (closest: ClosestPoints(surface)), with
+// passes about options.spacing apart, relaxed and returned resampled at about a quarter of
+// the spacing. Parts of the surface thinner than the spacing are told apart by their
+// normals: a pass does not push the one on the other side of a thin sheet. Deterministic
+// whatever the number of threads (oneTBB). O(iterations * P log P) for P points of the
+// result. Throws ParameterError for a spacing that is not a positive number or
+// iterations < 0, InputError for an open curve.
+Polylines relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
+                       const RelaxOptions& options);
+
+} // namespace meander

@@ -1,0 +1,117 @@
+// relax_curves: the curve's passes evened out on the surface, never crossing, the
+// curves still closed and one per component.
+#include "meander/relax.h"
+
+#include "meander/error.h"
+#include "meander/evenness.h"
+#include "meander/pipeline.h"
+#include "meander/shapes.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace meander {
+namespace {
+
+double cross2(Vec3 o, Vec3 a, Vec3 b) { return double(a.x - o.x) * (b.y - o.y) - double(a.y - o.y) * (b.x - o.x); }
+
+// Whether segments ab and cd of the z = 0 plane cross (touching counts).
+bool segments_cross(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const double d1 = cross2(c, d, a), d2 = cross2(c, d, b), d3 = cross2(a, b, c), d4 = cross2(a, b, d);
+  return ((d1 >= 0 && d2 <= 0) || (d1 <= 0 && d2 >= 0)) && ((d3 >= 0 && d4 <= 0) || (d3 <= 0 && d4 >= 0));
+}
+
+// Pairs of segments of a closed plane curve that cross, segments sharing a point left
+// out. A uniform grid of cells as wide as the longest segment: O(n) for an even curve.
+int crossings(std::span<const Vec3> c) {
+  const size_t n = c.size();
+  double longest = 0;
+  for (size_t i = 0; i < n; ++i) longest = std::max(longest, norm(c[(i + 1) % n] - c[i]));
+  std::map<std::pair<int, int>, std::vector<size_t>> cells;
+  auto cell = [&](Vec3 p) { return std::pair(int(std::floor(p.x / longest)), int(std::floor(p.y / longest))); };
+  for (size_t i = 0; i < n; ++i) cells[cell(c[i])].push_back(i);
+  int count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const auto [x, y] = cell(c[i]);
+    for (int dx = -2; dx <= 2; ++dx)
+      for (int dy = -2; dy <= 2; ++dy) {
+        const auto found = cells.find({x + dx, y + dy});
+        if (found == cells.end()) continue;
+        for (const size_t j : found->second) {
+          if (j <= i || j == (i + 1) % n || i == (j + 1) % n) continue;
+          count += segments_cross(c[i], c[(i + 1) % n], c[j], c[(j + 1) % n]);
+        }
+      }
+  }
+  return count;
+}
+
+// The curve on the unit square, made on its even remesh and moved onto it, before relaxing.
+Polylines unrelaxed_curve(const PolygonMesh& mesh, double spacing) {
+  const PolygonMesh even = remesh_to_spacing(mesh, spacing, Quadrangulation::dual_simplest);
+  return make_curve(even, CurveJob{}).curves;
+}
+
+TEST(Relax, EvensTheGapsOfAPlaneCurveWithoutCrossingIt) {
+  const PolygonMesh square = grid(2000);
+  const double spacing = 0.03;
+  const Polylines before = unrelaxed_curve(square, spacing);
+  ASSERT_EQ(crossings(before.points), 0);
+  const Polylines after = relax_curves(before, square, ClosestPoints(square), {.spacing = spacing});
+  ASSERT_EQ(after.size(), 1);
+  EXPECT_EQ(crossings(after.points), 0);
+  for (const Vec3 p : after.points) {
+    EXPECT_EQ(p.z, 0);
+    EXPECT_TRUE(p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1) << p.x << " " << p.y;
+  }
+  const EvennessReport was = measure_evenness(square, before), is = measure_evenness(square, after);
+  EXPECT_GT(was.gap_cv, 0.15);
+  EXPECT_LT(is.gap_cv, 0.12);
+  EXPECT_NEAR(is.gap_median, spacing, 0.1 * spacing);
+  EXPECT_GT(is.gap_p5, 0.75 * spacing);
+  EXPECT_LT(is.coverage_max, was.coverage_max);
+}
+
+TEST(Relax, KeepsEachCurveClosedAndOnItsComponent) {
+  const PolygonMesh two = test::side_by_side(sphere(2000), torus(2000), {3, 0, 0});
+  const double spacing = 0.1;
+  const Polylines before = unrelaxed_curve(two, spacing);
+  ASSERT_EQ(before.size(), 2);
+  const Polylines after = relax_curves(before, two, ClosestPoints(two), {.spacing = spacing});
+  ASSERT_EQ(after.size(), 2);
+  // The sphere's curve stays on the sphere (x < 1.5), the torus's on the torus.
+  for (int32_t k = 0; k < 2; ++k)
+    for (const Vec3 p : after.polyline(k)) EXPECT_EQ(p.x < 1.5, before.polyline(k)[0].x < 1.5);
+  EXPECT_EQ(after.open, std::vector<uint8_t>{});
+}
+
+TEST(Relax, TheSameWhateverTheNumberOfThreads) {
+  const PolygonMesh mesh = torus(3000);
+  const Polylines before = unrelaxed_curve(mesh, 0.08);
+  const ClosestPoints surface(mesh);
+  const Polylines many = relax_curves(before, mesh, surface, {.spacing = 0.08});
+  const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Polylines single = relax_curves(before, mesh, surface, {.spacing = 0.08});
+  EXPECT_EQ(many.points, single.points);
+  EXPECT_EQ(many.start, single.start);
+}
+
+TEST(Relax, RefusesWhatItCannotDo) {
+  const PolygonMesh mesh = sphere(500);
+  const ClosestPoints surface(mesh);
+  const Polylines curve = unrelaxed_curve(mesh, 0.2);
+  for (const double spacing : {0.0, -1.0, double(NAN), double(INFINITY)})
+    EXPECT_THROW(relax_curves(curve, mesh, surface, {.spacing = spacing}), ParameterError) << spacing;
+  EXPECT_THROW(relax_curves(curve, mesh, surface, {.spacing = 0.2, .iterations = -1}), ParameterError);
+  Polylines open = curve;
+  open.open = {1};
+  EXPECT_THROW(relax_curves(open, mesh, surface, {.spacing = 0.2}), InputError);
+}
+
+} // namespace
+} // namespace meander
