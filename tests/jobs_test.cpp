@@ -66,11 +66,12 @@ TEST(Jobs, CliAndStudioTakeTheSameParameters) {
   EXPECT_EQ(listed["curve"].size(), parameters_of<CurveJob>().size());
   EXPECT_EQ(listed["wire"].size(), parameters_of<WireJob>().size() - 2); // the mode is the method and shape
   EXPECT_EQ(listed["duotone"].size(), parameters_of<DuotoneJob>().size());
-  EXPECT_EQ(listed["curve"][6]["name"], "samples");
-  EXPECT_EQ(listed["curve"][6]["max"], 1000);
-  EXPECT_EQ(listed["curve"][6]["default"], "4");
-  EXPECT_EQ(listed["curve"][0]["name"], "spacing");
+  EXPECT_EQ(listed["curve"][7]["name"], "samples");
+  EXPECT_EQ(listed["curve"][7]["max"], 1000);
+  EXPECT_EQ(listed["curve"][7]["default"], "4");
+  EXPECT_EQ(listed["curve"][0]["name"], "model_size");
   EXPECT_EQ(listed["curve"][0]["default"], "none");
+  EXPECT_EQ(listed["curve"][1]["name"], "spacing");
 }
 
 // The library names a parameter it refuses; the CLI shows the name as its option.

@@ -62,13 +62,16 @@ TEST(Relax, EvensTheGapsOfAPlaneCurveWithoutCrossingIt) {
   const double spacing = 0.03;
   const Polylines before = unrelaxed_curve(square, spacing);
   ASSERT_EQ(crossings(before.points), 0);
-  const Polylines after = relax_curves(before, square, ClosestPoints(square), {.spacing = spacing});
+  const RelaxedCurves relaxed = relax_curves(before, square, ClosestPoints(square), {.spacing = spacing});
+  const Polylines& after = relaxed.curves;
   ASSERT_EQ(after.size(), 1);
   EXPECT_EQ(crossings(after.points), 0);
   for (const Vec3 p : after.points) {
     EXPECT_EQ(p.z, 0);
     EXPECT_TRUE(p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1) << p.x << " " << p.y;
   }
+  ASSERT_EQ(relaxed.normals.size(), after.points.size());
+  for (const Vec3 n : relaxed.normals) EXPECT_NEAR(std::abs(n.z), 1, 1e-6);
   const EvennessReport was = measure_evenness(square, before), is = measure_evenness(square, after);
   EXPECT_GT(was.gap_cv, 0.15);
   EXPECT_LT(is.gap_cv, 0.12);
@@ -82,7 +85,7 @@ TEST(Relax, KeepsEachCurveClosedAndOnItsComponent) {
   const double spacing = 0.1;
   const Polylines before = unrelaxed_curve(two, spacing);
   ASSERT_EQ(before.size(), 2);
-  const Polylines after = relax_curves(before, two, ClosestPoints(two), {.spacing = spacing});
+  const Polylines after = relax_curves(before, two, ClosestPoints(two), {.spacing = spacing}).curves;
   ASSERT_EQ(after.size(), 2);
   // The sphere's curve stays on the sphere (x < 1.5), the torus's on the torus.
   for (int32_t k = 0; k < 2; ++k)
@@ -94,11 +97,12 @@ TEST(Relax, TheSameWhateverTheNumberOfThreads) {
   const PolygonMesh mesh = torus(3000);
   const Polylines before = unrelaxed_curve(mesh, 0.08);
   const ClosestPoints surface(mesh);
-  const Polylines many = relax_curves(before, mesh, surface, {.spacing = 0.08});
+  const RelaxedCurves many = relax_curves(before, mesh, surface, {.spacing = 0.08});
   const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-  const Polylines single = relax_curves(before, mesh, surface, {.spacing = 0.08});
-  EXPECT_EQ(many.points, single.points);
-  EXPECT_EQ(many.start, single.start);
+  const RelaxedCurves single = relax_curves(before, mesh, surface, {.spacing = 0.08});
+  EXPECT_EQ(many.curves.points, single.curves.points);
+  EXPECT_EQ(many.curves.start, single.curves.start);
+  EXPECT_EQ(many.normals, single.normals);
 }
 
 TEST(Relax, RefusesWhatItCannotDo) {

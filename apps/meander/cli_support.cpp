@@ -45,7 +45,15 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
       return;
     }
     CLI::Option* option = app.add_option_function<std::string>(
-        name, [&p, &value](const std::string& text) { set_parameter(p, text, value); }, help);
+        name,
+        [&app, &p, &value](const std::string& text) {
+          if (p.length && &p != &parameters::model_size && has_unit(text) && app.count(option_name(parameters::model_size.name)) == 0)
+            throw ParameterError(p.name, ": " + text + " carries a unit, which needs " +
+                                             option_name(parameters::model_size.name) +
+                                             " (without it, lengths are in the model's own units)");
+          set_parameter(p, text, value);
+        },
+        help);
     option->default_str(parameter_text(p, value));
     std::string type;
     if constexpr (std::is_enum_v<T>) {

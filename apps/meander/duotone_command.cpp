@@ -80,7 +80,7 @@ void run_duotone(const DuotoneArgs& a) {
   if (!a.regions.empty()) pieces = duotone_regions(duotone, job.tiles.style);
   log.lap("curve, regions");
 
-  write_textured_mesh(surface, a.output);
+  write_textured_mesh(surface, a.output, job.model_size.has_value());
   if (!a.curve.empty()) write_polylines(curves, a.curve);
   for (int k = 0; k < 2 && !a.regions.empty(); ++k) write_mesh(pieces[size_t(k)], regions[size_t(k)]);
   log.lap("write");

@@ -79,7 +79,7 @@ void run_wire(const WireArgs& a) {
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
 
-  write_mesh(wire.mesh, a.output);
+  write_mesh(wire.mesh, a.output, {.millimetres = job.curve.model_size.has_value()});
   log.lap("write wire");
   const PrintabilityReport& report = wire.report;
   if (!a.report.empty()) write_bytes(a.report, printability_json(report) + "\n");

@@ -30,9 +30,10 @@ public:
   // moves a little) makes the query several times as fast.
   Hit closest_hit(Vec3d p) const;
   Hit closest_hit(Vec3d p, const Hit& hint) const;
-  // Moves each point to the closest point of the surface: in parallel, and the same
-  // result whatever the number of threads.
-  void project(std::span<Vec3> points) const;
+  // Moves each point to the closest point of the surface, and sets normals[i] (if
+  // `normals` is not empty, as long as `points`) to the normal there: in parallel, and the
+  // same result whatever the number of threads.
+  void project(std::span<Vec3> points, std::span<Vec3> normals = {}) const;
 
 private:
   struct Tree;

@@ -76,6 +76,9 @@ struct MeshWriteOptions {
   // GLB: also write area-weighted vertex normals, so that viewers shade the surface
   // smooth rather than faceted (other formats ignore it).
   bool normals = true;
+  // The mesh is in millimetres (CurveJob::model_size): a GLB's node scales it by 1/1000,
+  // as glTF's unit is the metre; other formats have no unit, 3MF's is the millimetre.
+  bool millimetres = false;
 };
 
 // Writes a polygon mesh: OBJ (v, f), PLY (vertex float x,y,z; face list uchar int, or

@@ -71,6 +71,7 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
 std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob& job);
 
 struct DuotoneJob {
+  std::optional<double> model_size; // as CurveJob::model_size
   // Set: the duotone is made on the surface remeshed evenly so that the separating
   // curve's neighbouring passes lie about this far apart (remesh_to_spacing).
   std::optional<double> spacing;

@@ -23,6 +23,9 @@ struct Parameter {
   double min = -INFINITY, max = INFINITY;
   // Names: the accepted ones (radius, a positive number or a name, lists its name).
   std::span<const std::string_view> choices;
+  // A length: its value may carry a unit (mm, cm, m, in), and is then in millimetres,
+  // which only a model size allows (has_unit).
+  bool length = false;
 };
 
 // The value of parameter p from text, as the CLI gets it and the studio gets names:
@@ -34,6 +37,11 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
 
 // A value of parameter p as set_parameter reads it: the default shown in help texts.
 template <class T> std::string parameter_text(const Parameter& p, const T& value);
+
+// Whether `text`, a value of a length parameter, carries a unit ("3mm", "4.7in"). A length
+// with a unit is read in millimetres; the CLI and the studio refuse one without a model
+// size (parameters::model_size), when lengths are in the model's own units.
+bool has_unit(std::string_view text);
 
 // Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
 void check_parameter(const Parameter& p, double value, bool integer);
@@ -57,6 +65,7 @@ inline constexpr std::string_view method_choices[] = {"constant", "variable"};
 inline constexpr std::string_view shape_choices[] = {"wire", "ribbon"};
 inline constexpr std::string_view radius_choices[] = {"auto"};
 inline constexpr std::string_view spacing_choices[] = {"none"};
+inline constexpr std::string_view model_size_choices[] = {"none"};
 inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
 inline constexpr std::string_view rule_choices[] = {"tree", "flip"};
 inline constexpr std::string_view tiles_choices[] = {"truchet", "outline", "triangles", "stripes", "dots"};
@@ -69,10 +78,19 @@ inline constexpr Parameter tree{.name = "tree",
 inline constexpr Parameter seed{.name = "seed", .help = "random seed (same seed, same output)"};
 inline constexpr Parameter smooth{.name = "smooth", .help = "smoothing of the control polygon", .choices = smooth_choices};
 inline constexpr Parameter samples{.name = "samples", .help = "points per control polygon segment", .min = 1, .max = 1000};
+inline constexpr Parameter model_size{.name = "model_size",
+                                      .help = "scale the model so that its largest bounding-box side is this long "
+                                              "(120mm, 12cm, 4.7in; a bare number is millimetres): every file is then "
+                                              "in millimetres (glTF in metres), and lengths may carry units (none: the "
+                                              "model's own units)",
+                                      .choices = model_size_choices,
+                                      .length = true};
 inline constexpr Parameter spacing{.name = "spacing",
-                                   .help = "the distance between neighbouring passes of the curve, in mesh units: the "
-                                           "surface is first remeshed evenly to it (none: the mesh's own edges)",
-                                   .choices = spacing_choices};
+                                   .help = "the distance between neighbouring passes of the curve, in mesh units "
+                                           "(millimetres with a model size): the surface is first remeshed evenly to "
+                                           "it (none: the mesh's own edges)",
+                                   .choices = spacing_choices,
+                                   .length = true};
 inline constexpr Parameter relax{.name = "relax",
                                  .help = "with --spacing: rounds of evening the gaps between the curve's passes on the "
                                          "surface (0: the curve as made on the even mesh)",
@@ -85,15 +103,18 @@ inline constexpr Parameter method{.name = "method",
                                   .choices = method_choices};
 inline constexpr Parameter shape{.name = "shape", .help = "wire (closed tube) or ribbon (band on the surface)", .choices = shape_choices};
 inline constexpr Parameter radius{.name = "radius",
-                                  .help = "constant: tube radius or half the ribbon width in mesh units, or auto: the "
-                                          "largest that does not self-intersect",
-                                  .choices = radius_choices};
+                                  .help = "constant: tube radius or half the ribbon width in mesh units (millimetres "
+                                          "with a model size), or auto: the largest that does not self-intersect",
+                                  .choices = radius_choices,
+                                  .length = true};
 inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon", .min = 3, .max = 64};
 inline constexpr Parameter s{.name = "s", .help = "variable: trapezoid size across the curve (1 covers the surface)", .min = 0, .max = 1};
 inline constexpr Parameter t{.name = "t", .help = "variable: trapezoid size along the curve", .min = 0, .max = 1};
 inline constexpr Parameter thickness{.name = "thickness",
-                                     .help = "variable wire: slab thickness in mesh units (0: half the local ribbon width)",
-                                     .min = 0};
+                                     .help = "variable wire: slab thickness in mesh units (millimetres with a model "
+                                             "size; 0: half the local ribbon width)",
+                                     .min = 0,
+                                     .length = true};
 inline constexpr Parameter cap_angle{.name = "cap_angle",
                                      .help = "variable: first flip the long edge of flat triangles whose largest angle "
                                              "exceeds this many degrees (180: flip none)",
@@ -105,9 +126,11 @@ inline constexpr Parameter keep_faces{.name = "keep_faces",
                                               "the short edges of needles and of triangles folded over"};
 inline constexpr Parameter levels{.name = "levels", .help = "variable: Catmull-Clark subdivision levels", .min = 0, .max = 6};
 inline constexpr Parameter min_thickness{.name = "min_thickness",
-                                         .help = "wire: the thinnest wall the printer makes, in mesh units (about twice "
-                                                 "the nozzle width); thinner is reported as not printable",
-                                         .min = 0};
+                                         .help = "wire: the thinnest wall the printer makes, in mesh units "
+                                                 "(millimetres with a model size; about twice the nozzle width); "
+                                                 "thinner is reported as not printable",
+                                         .min = 0,
+                                         .length = true};
 
 inline constexpr Parameter duotone_quad{.name = "quad",
                                         .help = "2-colourable quads: catmull-clark (dual-simplest on a mesh with "
@@ -135,6 +158,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
   using Plain = std::remove_const_t<Job>;
   static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob>);
   if constexpr (std::is_same_v<Plain, CurveJob>) {
+    visit(parameters::model_size, job.model_size);
     visit(parameters::spacing, job.spacing);
     visit(parameters::relax, job.relax);
     visit(parameters::quad, job.quadrangulation);
@@ -156,6 +180,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::levels, job.levels);
     visit(parameters::min_thickness, job.min_thickness);
   } else {
+    visit(parameters::model_size, job.model_size);
     visit(parameters::spacing, job.spacing);
     visit(parameters::duotone_quad, job.duotone.quadrangulation);
     visit(parameters::rule, job.duotone.rule);

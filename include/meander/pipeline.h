@@ -30,6 +30,9 @@ struct SlabMeshOptions {
 };
 
 struct CurveJob {
+  // Set: the mesh is first scaled about the origin so that its largest bounding-box side
+  // is this long (scaled_to_size), in millimetres, the unit of every length of the job.
+  std::optional<double> model_size;
   // Set: the surface is first remeshed evenly (remesh_to_spacing) so that neighbouring
   // passes of the curve lie about this far apart, and the curve's points are then moved
   // onto the input surface; none: the curve follows the input's own faces.
@@ -60,13 +63,19 @@ struct CurveResult {
   QuadMesh quads; // of the remeshed surface with CurveJob::spacing
   TriangleCycle cycle;
   Polylines curves; // one closed curve per connected component
-  // With CurveJob::spacing: the input surface, which the curves lie on (moved there).
+  // With CurveJob::spacing: the input surface, which the curves lie on (moved there), and
+  // its normal at each point of the curves (what a wire sweeps them with).
   PolygonMesh surface;
+  std::vector<Vec3> normals;
   int64_t points_written = 0; // to CurveJob::output
   // By CurveJob::slab_mesh: polygons split, edges flipped, caps cut off the boundary,
   // needles' edges collapsed.
   int64_t stars = 0, cap_flips = 0, cap_cuts = 0, needle_collapses = 0;
 };
+
+// The mesh scaled about the origin by size / its largest bounding-box side. Throws
+// InputError for a mesh of no extent.
+PolygonMesh scaled_to_size(PolygonMesh mesh, double size);
 
 // The edge length of the even mesh on which the curve's passes lie `spacing` apart (their
 // median distance), as measured for each quadrangulation (docs/density.md).

@@ -10,6 +10,8 @@
 #include "meander/closest_points.h"
 #include "meander/mesh.h"
 
+#include <vector>
+
 namespace meander {
 
 struct RelaxOptions {
@@ -24,7 +26,11 @@ struct RelaxOptions {
 // whatever the number of threads (oneTBB). O(iterations * P log P) for P points of the
 // result. Throws ParameterError for a spacing that is not a positive number or
 // iterations < 0, InputError for an open curve.
-Polylines relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
-                       const RelaxOptions& options);
+struct RelaxedCurves {
+  Polylines curves;
+  std::vector<Vec3> normals; // the surface's unit normal at each point, as its face has it
+};
+RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
+                           const RelaxOptions& options);
 
 } // namespace meander

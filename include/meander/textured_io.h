@@ -53,7 +53,8 @@ Texture read_texture(std::string_view bytes, std::string_view name);
 //        texture embedded as PNG; double-sided, non-metallic materials.
 // Atomic as a whole: every file is written before any is renamed into place, and if a
 // rename fails the files already renamed are removed. Other extensions: UsageError.
-void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path);
+// `millimetres`: as MeshWriteOptions::millimetres.
+void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path, bool millimetres = false);
 
 struct NamedFile {
   std::string name; // a file name, no folder
@@ -63,7 +64,8 @@ struct NamedFile {
 // The files write_textured_mesh would write for `name` (the OBJ first, then its MTL and
 // textures, or the one GLB), in memory, named as they would be: for a caller that sends
 // them on rather than to disk. Throws what write_textured_mesh throws but IOError.
-std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name);
+std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name,
+                                           bool millimetres = false);
 
 // The files in one zip archive in memory, stored (not compressed; Zip64 where a file or
 // the whole passes 4 GiB), through libzip: one download for a result of several files.

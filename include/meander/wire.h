@@ -57,6 +57,14 @@ struct ConstantWire {
 // positive number or sides < 3. O(output), plus the radius search for auto.
 ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options);
 
+// The same along closed curves given with the surface's normal at each point (either
+// orientation: they are made to agree along each curve, a curve whose last normal then
+// disagrees with its first is taken for one on a Möbius band), as relax_curves makes them
+// about a quarter of `spacing` apart; options.curve is not used. The normals are
+// smoothed along the curve first (they come from the faces). Throws ParameterError as
+// constant_wire does, and for normals not one per point.
+ConstantWire constant_wire(const Polylines& centre, std::span<const Vec3> normals, const ConstantWireOptions& options);
+
 // The largest radius for which the constant-diameter tube around `centre` (closed
 // polylines) does not run into itself: half the distance between parts of the curves
 // that are not neighbours along them (segments whose distance d is less than 2/pi of

@@ -38,7 +38,7 @@ TexturedMesh read_gltf(std::string_view bytes, const std::filesystem::path& path
 void write_textured_obj(const TexturedMesh& mesh, const std::filesystem::path& path,
                         const std::function<Sink&(const std::filesystem::path&)>& open);
 void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
-void write_textured_glb(const TexturedMesh& mesh, Sink& out);
+void write_textured_glb(const TexturedMesh& mesh, bool millimetres, Sink& out);
 
 void write_obj(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);
 void write_ply(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& out);

@@ -465,11 +465,14 @@ nlohmann::json primitive(int positions, int normals, int texcoords, int indices,
   return p;
 }
 
-// Adds the node and mesh if there are primitives: a glTF mesh needs at least one.
-void add_scene_mesh(GlbBuilder& glb, nlohmann::json primitives) {
+// Adds the node and mesh if there are primitives: a glTF mesh needs at least one. A mesh
+// in millimetres gets a node that scales it to metres, glTF's unit.
+void add_scene_mesh(GlbBuilder& glb, nlohmann::json primitives, bool millimetres) {
   if (primitives.empty()) return;
   glb.push("meshes", {{"primitives", std::move(primitives)}});
-  glb.push("nodes", {{"mesh", 0}});
+  nlohmann::json node = {{"mesh", 0}};
+  if (millimetres) node["scale"] = {0.001, 0.001, 0.001};
+  glb.push("nodes", std::move(node));
   glb.json()["scenes"][0]["nodes"] = {0};
 }
 
@@ -556,14 +559,14 @@ void write_glb(const PolygonMesh& mesh, const MeshWriteOptions& options, Sink& o
     const int normal_accessor = options.normals ? glb.vec3_accessor(normals, false) : -1;
     primitives.push_back(primitive(positions, normal_accessor, -1, glb.index_accessor(indices), -1));
   }
-  add_scene_mesh(glb, std::move(primitives));
+  add_scene_mesh(glb, std::move(primitives), options.millimetres);
   glb.write(out);
 }
 
-void write_textured_glb(const TexturedMesh& textured, Sink& out) {
+void write_textured_glb(const TexturedMesh& textured, bool millimetres, Sink& out) {
   const PolygonMesh& mesh = textured.mesh;
   const Appearance& a = textured.appearance;
-  if (a.materials.empty()) return write_glb(mesh, {}, out);
+  if (a.materials.empty()) return write_glb(mesh, {.millimetres = millimetres}, out);
   require_writable(mesh);
   // glTF vertices carry one texture coordinate: split each vertex into one per distinct
   // coordinate around it, numbered in order of first use.
@@ -620,7 +623,7 @@ void write_textured_glb(const TexturedMesh& textured, Sink& out) {
         primitives.push_back(primitive(position_accessor, normal_accessor, a.materials[m].texture.empty() ? -1 : texcoord_accessor,
                                        glb.index_accessor(indices[m]), int(m)));
   }
-  add_scene_mesh(glb, std::move(primitives));
+  add_scene_mesh(glb, std::move(primitives), millimetres);
   glb.write(out);
 }
 

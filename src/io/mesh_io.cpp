@@ -83,7 +83,7 @@ void require_glb(const std::filesystem::path& path) {
 
 } // namespace
 
-void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path) {
+void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& path, bool millimetres) {
   if (io::lowercase_extension(path) == ".obj") {
     std::vector<std::unique_ptr<io::AtomicFile>> files;
     io::write_textured_obj(mesh, path, [&files](const std::filesystem::path& file) -> io::Sink& {
@@ -97,11 +97,11 @@ void write_textured_mesh(const TexturedMesh& mesh, const std::filesystem::path& 
   require_glb(path);
   check_appearance(mesh.mesh, mesh.appearance, path.string());
   io::AtomicFile out(path);
-  io::write_textured_glb(mesh, out);
+  io::write_textured_glb(mesh, millimetres, out);
   out.commit();
 }
 
-std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name) {
+std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::filesystem::path& name, bool millimetres) {
   std::vector<std::pair<std::filesystem::path, std::unique_ptr<io::MemorySink>>> sinks;
   const auto open = [&sinks](const std::filesystem::path& file) -> io::Sink& {
     return *sinks.emplace_back(file, std::make_unique<io::MemorySink>()).second;
@@ -111,7 +111,7 @@ std::vector<NamedFile> textured_mesh_files(const TexturedMesh& mesh, const std::
   } else {
     require_glb(name);
     check_appearance(mesh.mesh, mesh.appearance, name.string());
-    io::write_textured_glb(mesh, open(name));
+    io::write_textured_glb(mesh, millimetres, open(name));
   }
   std::vector<NamedFile> files;
   for (auto& [file, sink] : sinks) files.push_back({file.filename().string(), sink->take()});

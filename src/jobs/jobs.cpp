@@ -55,7 +55,9 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
   WireResult result;
   bool known_clear = false; // variable_wire searched its result already
   if (job.method == WireMethod::constant) {
-    ConstantWire made = constant_wire(curve.quads, curve.cycle, constant_options(job));
+    // A curve moved onto the input surface (CurveJob::spacing) is swept where it lies.
+    ConstantWire made = curve.normals.empty() ? constant_wire(curve.quads, curve.cycle, constant_options(job))
+                                              : constant_wire(curve.curves, curve.normals, constant_options(job));
     if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");
     result.mesh = std::move(made.mesh);
     result.radius = made.radius;
@@ -94,6 +96,11 @@ std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob
 }
 
 Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job) {
+  if (job.model_size) {
+    DuotoneJob sized = job;
+    sized.model_size.reset();
+    return make_duotone(scaled_to_size(mesh, *job.model_size), connectivity, sized);
+  }
   if (!job.spacing) return make_duotone(mesh, connectivity, job.duotone);
   const PolygonMesh even = remesh_to_spacing(mesh, *job.spacing, job.duotone.quadrangulation, job.max_faces);
   return make_duotone(even, build_connectivity(even), job.duotone);

@@ -3,6 +3,7 @@
 #include "meander/error.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <optional>
@@ -27,6 +28,18 @@ std::string number_text(double value) {
   if (std::isfinite(p.min) && std::isfinite(p.max)) range += " in [" + number_text(p.min) + ", " + number_text(p.max) + "]";
   else if (std::isfinite(p.min)) range += " >= " + number_text(p.min);
   throw ParameterError(p.name, ": expected " + range + ", got " + shown(got));
+}
+
+// A length's text split into its number and the millimetres in its unit (1 without one).
+std::pair<std::string_view, double> split_unit(const Parameter& p, std::string_view text) {
+  size_t letters = text.size();
+  while (letters > 0 && std::isalpha(static_cast<unsigned char>(text[letters - 1]))) --letters;
+  const std::string_view unit = text.substr(letters);
+  if (!p.length || unit.empty() || letters == 0) return {text, 1};
+  static constexpr std::pair<std::string_view, double> units[] = {{"mm", 1}, {"cm", 10}, {"m", 1000}, {"in", 25.4}};
+  for (const auto& [name, millimetres] : units)
+    if (unit == name) return {text.substr(0, letters), millimetres};
+  throw ParameterError(p.name, ": unknown unit '" + shown(unit) + "' in " + shown(text) + " (expected mm, cm, m or in)");
 }
 
 template <class T> T number(const Parameter& p, std::string_view text) {
@@ -74,6 +87,11 @@ template <class Job> void check_numbers(const Job& job) {
 
 } // namespace
 
+bool has_unit(std::string_view text) {
+  return !text.empty() && std::isalpha(static_cast<unsigned char>(text.back())) &&
+         text.find_first_of("0123456789") != std::string_view::npos;
+}
+
 void check_parameter(const Parameter& p, double value, bool integer) {
   if (!std::isfinite(value) || value < p.min || value > p.max || (integer && value != std::floor(value)))
     refuse_number(p, integer, number_text(value));
@@ -83,6 +101,9 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
   if constexpr (std::is_same_v<T, bool>) {
     if (text != "true" && text != "false") throw ParameterError(p.name, ": expected true or false, got " + shown(text));
     value = text == "true";
+  } else if constexpr (std::is_same_v<T, double>) {
+    const auto [digits, millimetres] = split_unit(p, text);
+    value = number<T>(p, digits) * millimetres;
   } else if constexpr (std::is_arithmetic_v<T>) {
     value = number<T>(p, text);
   } else if constexpr (std::is_same_v<T, std::optional<double>>) {
@@ -90,11 +111,12 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
       value.reset();
       return;
     }
+    const auto [digits, millimetres] = split_unit(p, text);
     double r = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), r);
-    if (error != std::errc() || end != text.data() + text.size() || !(r > 0) || !std::isfinite(r))
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), r);
+    if (error != std::errc() || end != digits.data() + digits.size() || !(r > 0) || !std::isfinite(r))
       throw ParameterError(p.name, ": expected a positive number or " + std::string(p.choices[0]) + ", got " + shown(text));
-    value = r;
+    value = r * millimetres;
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     value = parse_duotone_colors(text); // its refusals name the parameter
   } else {

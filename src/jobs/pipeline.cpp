@@ -31,6 +31,14 @@ private:
 
 } // namespace
 
+PolygonMesh scaled_to_size(PolygonMesh mesh, double size) {
+  const double side = bounding_box(mesh.positions).largest_side();
+  if (!(side > 0)) throw InputError("the mesh has no extent, so it has no size to scale");
+  const float factor = float(size / side);
+  for (Vec3& p : mesh.positions) p = p * factor;
+  return mesh;
+}
+
 double spacing_edge_length(double spacing, Quadrangulation) {
   // The curve's median gap over the remeshed edge length: 0.36 (0.355 to 0.37) on closed
   // scans and generated shapes at 1/30 to 1/120 of their diagonal (docs/density.md).
@@ -58,6 +66,7 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times)
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
   Stopwatch watch(times);
   CurveResult result;
+  if (job.model_size) mesh = scaled_to_size(std::move(mesh), *job.model_size);
   // The input surface, onto which the curve made on its remeshed version is moved.
   PolygonMesh surface;
   std::optional<ClosestPoints> on_surface;
@@ -122,10 +131,14 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
     watch.lap("smooth");
     if (job.spacing) {
-      if (job.relax > 0)
-        result.curves = relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax});
-      else
-        on_surface->project(result.curves.points);
+      if (job.relax > 0) {
+        RelaxedCurves relaxed = relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax});
+        result.curves = std::move(relaxed.curves);
+        result.normals = std::move(relaxed.normals);
+      } else {
+        result.normals.resize(result.curves.points.size());
+        on_surface->project(result.curves.points, result.normals);
+      }
       result.surface = std::move(surface);
       watch.lap(job.relax > 0 ? "relax" : "project");
     }

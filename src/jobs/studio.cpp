@@ -137,7 +137,10 @@ bool set_studio_parameter(StudioParams& p, const std::string& key, const json& v
       known = true;
       auto scratch = field;
       try {
-        set_parameter(parameter, json_text<std::decay_t<decltype(field)>>(value), applies ? field : scratch);
+        // A length may come as text with its unit ("3mm").
+        const std::string text = parameter.length && value.is_string() ? value.get<std::string>()
+                                                                       : json_text<std::decay_t<decltype(field)>>(value);
+        set_parameter(parameter, text, applies ? field : scratch);
         taken = true;
       } catch (const ParameterError& e) {
         if (applies) throw;
@@ -150,6 +153,24 @@ bool set_studio_parameter(StudioParams& p, const std::string& key, const json& v
   set(p.duotone, p.mode == StudioMode::duotone);
   if (!taken && refusal) throw *refusal;
   return known;
+}
+
+// A length with a unit ("3mm") needs the model size: without one, lengths are in the
+// model's own units.
+void refuse_units_without_model_size(const json& document, const StudioParams& p) {
+  const bool sized = p.mode == StudioMode::duotone ? p.duotone.model_size.has_value() : p.wire.curve.model_size.has_value();
+  if (sized) return;
+  const auto check = [&](const auto& job) {
+    visit_parameters(job, [&](const Parameter& parameter, const auto&) {
+      const auto value = document.find(std::string(parameter.name));
+      if (parameter.length && value != document.end() && value->is_string() && has_unit(value->template get<std::string>()))
+        throw ParameterError(parameter.name, ": " + value->template get<std::string>() +
+                                                 " carries a unit, which needs model_size (without it, lengths are in "
+                                                 "the model's own units)");
+    });
+  };
+  check(p.wire);
+  check(p.duotone);
 }
 
 } // namespace
@@ -179,6 +200,7 @@ MakeRequest parse_make_request(std::string_view body) {
     }
   }
   if (!has_session) throw UsageError("session: missing (upload a mesh first: POST /api/mesh)");
+  refuse_units_without_model_size(document, p);
   return request;
 }
 
@@ -501,11 +523,14 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
                            (result.params.preview ? "_preview" : "");
   const bool curve_mode = result.params.mode == StudioMode::curve;
   const bool textured = !result.appearance.materials.empty();
+  const bool millimetres = (result.params.mode == StudioMode::duotone ? result.params.duotone.model_size
+                                                                      : result.params.wire.curve.model_size)
+                               .has_value();
   auto mesh_file = [&](const char* extension, const char* type) {
     if (curve_mode)
       throw UsageError(std::string("curve mode makes no mesh to save as ") + extension +
                        ": choose a wire or ribbon mode (the curve downloads as curve.svg or result.zip)");
-    return StudioDownload{mesh_file_bytes(result.mesh, base + extension), type, base + extension};
+    return StudioDownload{mesh_file_bytes(result.mesh, base + extension, {.millimetres = millimetres}), type, base + extension};
   };
   switch (file) {
   case StudioFile::surface:
@@ -524,7 +549,8 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   case StudioFile::threemf: return mesh_file(".3mf", "model/3mf");
   case StudioFile::glb: {
     if (!textured) return mesh_file(".glb", "model/gltf-binary");
-    const std::vector<NamedFile> glb = textured_mesh_files({.mesh = result.mesh, .appearance = result.appearance}, base + ".glb");
+    const std::vector<NamedFile> glb =
+        textured_mesh_files({.mesh = result.mesh, .appearance = result.appearance}, base + ".glb", millimetres);
     return {glb.front().bytes, "model/gltf-binary", base + ".glb"};
   }
   case StudioFile::obj_zip: {

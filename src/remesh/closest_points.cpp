@@ -78,9 +78,17 @@ ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint) const {
              tree_->triangles);
 }
 
-void ClosestPoints::project(std::span<Vec3> points) const {
+void ClosestPoints::project(std::span<Vec3> points, std::span<Vec3> normals) const {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i < range.end(); ++i) points[i] = to_float(closest(to_double(points[i])));
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      if (normals.empty()) {
+        points[i] = to_float(closest(to_double(points[i])));
+        continue;
+      }
+      const Hit hit = closest_hit(to_double(points[i]));
+      points[i] = to_float(hit.point);
+      normals[i] = to_float(hit.normal);
+    }
   });
 }
 

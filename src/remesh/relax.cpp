@@ -262,8 +262,8 @@ Curves relaxed(const Curves& curves, std::span<const Vec3d> walls, Vec3d origin,
 
 } // namespace
 
-Polylines relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
-                       const RelaxOptions& options) {
+RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
+                           const RelaxOptions& options) {
   if (!(options.spacing > 0 && std::isfinite(options.spacing)))
     throw ParameterError("spacing", " must be a positive number to relax a curve");
   if (options.iterations < 0) throw ParameterError("iterations", " must be at least 0");
@@ -285,10 +285,14 @@ Polylines relax_curves(const Polylines& curves, const PolygonMesh& surface, cons
   work = resampled(work, step, closest);
   for (int iteration = 0; iteration < options.iterations; ++iteration)
     work = resampled(relaxed(work, walls, origin, options.spacing, closest), step, closest);
-  Polylines out;
-  out.points.reserve(work.points.size());
-  for (const ClosestPoints::Hit& p : work.points) out.points.push_back(to_float(p.point));
-  out.start = work.start;
+  RelaxedCurves out;
+  out.curves.points.reserve(work.points.size());
+  out.normals.reserve(work.points.size());
+  for (const ClosestPoints::Hit& p : work.points) {
+    out.curves.points.push_back(to_float(p.point));
+    out.normals.push_back(to_float(p.normal));
+  }
+  out.curves.start = work.start;
   return out;
 }
 

@@ -183,6 +183,43 @@ Sweep sweep_frames(const QuadMesh& quads, const TriangleCycle& cycle, const Curv
   return sweep;
 }
 
+// The frames along given curves with the surface's normal at each point (constant_wire's
+// second form): the normals made to agree along each curve and smoothed over a few
+// points, then made perpendicular to the curve.
+Sweep sweep_along(const Polylines& centre, std::span<const Vec3> normals) {
+  Sweep sweep;
+  sweep.centre = centre;
+  sweep.normal.assign(normals.begin(), normals.end());
+  sweep.binormal.resize(normals.size());
+  sweep.mobius.assign(size_t(centre.size()), 0);
+  std::vector<Vec3> smoothed(normals.size());
+  for (int32_t c = 0; c < centre.size(); ++c) {
+    const int32_t first = centre.start[size_t(c)], m = centre.start[size_t(c) + 1] - first;
+    Vec3* up = sweep.normal.data() + first;
+    for (int32_t i = 1; i < m; ++i)
+      if (dot(up[i], up[i - 1]) < 0) up[i] = up[i] * -1.0f;
+    const bool mobius = m > 1 && dot(up[m - 1], up[0]) < 0;
+    sweep.mobius[size_t(c)] = mobius;
+    // Across the closing point of a Möbius curve the normal turns over.
+    auto at = [&](int32_t i) { return i < 0 ? (mobius ? up[i + m] * -1.0f : up[i + m]) : i >= m ? (mobius ? up[i - m] * -1.0f : up[i - m]) : up[i]; };
+    for (int round = 0; round < 4; ++round) {
+      for (int32_t i = 0; i < m; ++i) smoothed[size_t(i)] = at(i) * 0.5f + (at(i - 1) + at(i + 1)) * 0.25f;
+      std::copy(smoothed.begin(), smoothed.begin() + m, up);
+    }
+    const auto points = centre.polyline(c);
+    Vec3 tangent{}, normal{};
+    for (int32_t i = 0; i < m; ++i) {
+      if (const Vec3 t = section_normal(points[size_t((i + m - 1) % m)], points[size_t(i)], points[size_t((i + 1) % m)]);
+          norm(t) > 0)
+        tangent = t;
+      if (const Vec3 nrm = normalized(up[i] - tangent * float(dot(up[i], tangent))); norm(nrm) > 0) normal = nrm;
+      up[i] = normal;
+      sweep.binormal[size_t(first + i)] = cross(tangent, normal);
+    }
+  }
+  return sweep;
+}
+
 // The tube (wire) or band (ribbon) of `radius` around the sweep: every section's
 // vertices, and the faces of the segments `keep` selects (all if it is empty).
 PolygonMesh sweep_mesh(const Sweep& sweep, WireShape shape, int32_t sides, double radius, const std::vector<uint8_t>& keep = {}) {
@@ -417,9 +454,11 @@ double max_wire_radius(const Polylines& centre, int samples_per_segment) {
 
 namespace {
 
-// auto_wire_radius on a sweep made with options.curve.
-double auto_radius(const Sweep& sweep, const ConstantWireOptions& options) {
-  const int32_t k = options.curve.smoothing == Smoothing::none ? 1 : options.curve.samples;
+int32_t samples_per_segment(const CurveOptions& curve) { return curve.smoothing == Smoothing::none ? 1 : curve.samples; }
+
+// auto_wire_radius on a sweep whose curve has about k points per segment of its control
+// polygon (or per spacing).
+double auto_radius(const Sweep& sweep, const ConstantWireOptions& options, int32_t k) {
   constexpr double step = 1.1, reach = 1.35; // reach >= step^steps
   constexpr int steps = 3;
   const Clearance clearance = tube_clearance(sweep.centre, k, reach);
@@ -445,7 +484,7 @@ double auto_radius(const Sweep& sweep, const ConstantWireOptions& options) {
 } // namespace
 
 double auto_wire_radius(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
-  return auto_radius(sweep_frames(quads, cycle, options.curve), options);
+  return auto_radius(sweep_frames(quads, cycle, options.curve), options, samples_per_segment(options.curve));
 }
 
 int64_t constant_wire_triangles(int64_t cycle_triangles, const ConstantWireOptions& options) {
@@ -484,19 +523,38 @@ void require_indexable(int64_t triangles, const std::string& what) {
     throw UsageError(what + " would have " + std::to_string(triangles) + " triangles, more than a mesh can index (2^31 - 1)");
 }
 
-} // namespace
-
-ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+void check_constant_options(const ConstantWireOptions& options) {
   if (options.radius && (!(*options.radius > 0) || !std::isfinite(*options.radius)))
     throw ParameterError("radius", " must be a positive number (got " + std::to_string(*options.radius) + ")");
   if (options.shape == WireShape::wire && options.sides < 3)
     throw ParameterError("sides", " must be at least 3 (got " + std::to_string(options.sides) + ")");
+}
+
+} // namespace
+
+ConstantWire constant_wire(const QuadMesh& quads, const TriangleCycle& cycle, const ConstantWireOptions& options) {
+  check_constant_options(options);
   require_indexable(constant_wire_triangles(cycle.num_triangles(), options),
                     options.shape == WireShape::wire
                         ? "the wire of " + std::to_string(options.sides) + " sides at " + std::to_string(options.curve.samples) + " samples a segment"
                         : "the ribbon at " + std::to_string(options.curve.samples) + " samples a segment");
   const Sweep sweep = sweep_frames(quads, cycle, options.curve);
-  const double radius = options.radius ? *options.radius : auto_radius(sweep, options);
+  const double radius = options.radius ? *options.radius : auto_radius(sweep, options, samples_per_segment(options.curve));
+  if (!(radius > 0)) return {};
+  return {sweep_mesh(sweep, options.shape, options.sides, radius), radius};
+}
+
+ConstantWire constant_wire(const Polylines& centre, std::span<const Vec3> normals, const ConstantWireOptions& options) {
+  check_constant_options(options);
+  if (normals.size() != centre.points.size())
+    throw ParameterError("normals", ": expected one per curve point (" + std::to_string(centre.points.size()) + "), got " +
+                                        std::to_string(normals.size()));
+  require_indexable(int64_t(centre.points.size()) * 2 * (options.shape == WireShape::wire ? options.sides : 1),
+                    "the " + std::string(options.shape == WireShape::wire ? "wire" : "ribbon"));
+  const Sweep sweep = sweep_along(centre, normals);
+  // relax_curves puts about 4 points in a spacing, which is what the clearance search
+  // takes for a segment of the control polygon.
+  const double radius = options.radius ? *options.radius : auto_radius(sweep, options, 4);
   if (!(radius > 0)) return {};
   return {sweep_mesh(sweep, options.shape, options.sides, radius), radius};
 }
