@@ -142,6 +142,29 @@ TEST(CliCurve, SameSeedSameBytesOtherSeedOtherCurve) {
   }
 }
 
+// --branches: more leaves (which -v prints) the higher it is, a certificate of one cycle
+// at each value, and a refusal with another tree than random.
+TEST(CliCurve, BranchesSetTheLeavesThatVerbosePrints) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = output_dir();
+  const auto in = (shared_meshes() / "eight.off").string(), tri = (dir / "cycle.obj").string(),
+             out = (dir / "curve.ply").string();
+  const auto leaves = [&](const char* branches) {
+    const CommandResult r = run_cli({"curve", in, "-o", out, "--spacing", "0.05", "--branches", branches, "--triangles", tri, "-v"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(check_certificate(parse_obj_groups(tri)).cycles, 1);
+    const size_t at = r.err.find("tree: ");
+    EXPECT_NE(at, std::string::npos) << r.err;
+    return at == std::string::npos ? -1 : std::stol(r.err.substr(at + 6));
+  };
+  const long snakes = leaves("0"), half = leaves("0.5"), bushes = leaves("1");
+  EXPECT_LT(snakes, half);
+  EXPECT_LT(half, bushes);
+  const CommandResult refused = run_cli({"curve", in, "-o", out, "--branches", "0.5", "--tree", "dfs"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--branches grows a tree of its own"), std::string::npos) << refused.err;
+}
+
 TEST(CliCurve, EveryTreeQuadAndSmoothingGivesOneCycle) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto dir = output_dir();

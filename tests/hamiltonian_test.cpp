@@ -90,6 +90,26 @@ INSTANTIATE_TEST_SUITE_P(Shapes, CycleOnShape,
 
 // An observer is shown growing prefixes of the final order, in the same memory, every
 // `every` triangles and when the walk ends, with the cycles' starts walked so far.
+// --branches grows its own tree: still one cycle per component through every triangle,
+// its leaves counted on request; it refuses another tree strategy than random.
+TEST(Cycle, BranchesKeepOneCyclePerComponent) {
+  for (const auto& shape : cases) {
+    SCOPED_TRACE(shape.name);
+    const PolygonMesh mesh = shape.make();
+    const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));
+    for (const double branches : {0.0, 0.5, 1.0}) {
+      const TriangleCycle cycle = hamiltonian_cycle(quads, {.seed = 7, .branches = branches, .count_leaves = true});
+      EXPECT_EQ(verify_cycle(quads, cycle), "") << branches;
+      EXPECT_EQ(cycle.num_cycles(), shape.components);
+      EXPECT_GT(cycle.leaves, 0);
+    }
+    EXPECT_EQ(hamiltonian_cycle(quads, {}).leaves, -1);
+  }
+  const PolygonMesh sphere_mesh = sphere(500);
+  const QuadMesh quads = dual_simplest(sphere_mesh, build_connectivity(sphere_mesh));
+  EXPECT_THROW(hamiltonian_cycle(quads, {.tree = TreeStrategy::bfs, .branches = 0.5}), ParameterError);
+}
+
 TEST(Cycle, ObserverIsShownTheWalkAsItGoes) {
   const PolygonMesh mesh = interleaved_spheres();
   const QuadMesh quads = dual_simplest(mesh, build_connectivity(mesh));

@@ -66,9 +66,11 @@ TEST(Jobs, CliAndStudioTakeTheSameParameters) {
   EXPECT_EQ(listed["curve"].size(), parameters_of<CurveJob>().size());
   EXPECT_EQ(listed["wire"].size(), parameters_of<WireJob>().size() - 2); // the mode is the method and shape
   EXPECT_EQ(listed["duotone"].size(), parameters_of<DuotoneJob>().size());
-  EXPECT_EQ(listed["curve"][7]["name"], "samples");
-  EXPECT_EQ(listed["curve"][7]["max"], 1000);
-  EXPECT_EQ(listed["curve"][7]["default"], "4");
+  const auto samples = std::find_if(listed["curve"].begin(), listed["curve"].end(),
+                                    [](const nlohmann::json& entry) { return entry["name"] == "samples"; });
+  ASSERT_NE(samples, listed["curve"].end());
+  EXPECT_EQ((*samples)["max"], 1000);
+  EXPECT_EQ((*samples)["default"], "4");
   EXPECT_EQ(listed["curve"][0]["name"], "model_size");
   EXPECT_EQ(listed["curve"][0]["default"], "none");
   EXPECT_EQ(listed["curve"][1]["name"], "spacing");

@@ -127,6 +127,32 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
   EXPECT_GT(longest_path(TreeStrategy::dfs), 3 * longest_path(TreeStrategy::bfs));
 }
 
+// branching_forest spans every component for any waviness, is the same for the same
+// seed, and has more leaves the higher `branches`: a few seeds' totals grow steadily from
+// 0 to 1 on a grid.
+TEST(SpanningTree, BranchesSetHowManyLeaves) {
+  const Graph g = grid_and_triangle(30, 30);
+  const EdgeTable table{.num_nodes = g.num_nodes, .num_edges = int32_t(g.edges.size()), .rows = g.edges[0].data()};
+  int64_t previous = 0;
+  for (const double branches : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    SCOPED_TRACE(branches);
+    int64_t leaves = 0;
+    for (uint64_t seed : {1, 2, 3}) {
+      const std::vector<int32_t> forest = branching_forest(table, branches, seed);
+      expect_spanning_forest(g, forest, 2);
+      EXPECT_EQ(forest, branching_forest(table, branches, seed));
+      leaves += count_leaves(table, forest);
+    }
+    EXPECT_GT(leaves, previous);
+    previous = leaves;
+  }
+  // A path's two ends are its leaves.
+  const Graph path{.num_nodes = 4, .edges = {{0, 1}, {1, 2}, {2, 3}}};
+  const EdgeTable path_table{.num_nodes = 4, .num_edges = 3, .rows = path.edges[0].data()};
+  EXPECT_EQ(count_leaves(path_table, std::vector<int32_t>{0, 1, 2}), 2);
+  for (const double bad : {-0.1, 1.1, double(NAN)}) EXPECT_THROW(branching_forest(table, bad, 1), ParameterError) << bad;
+}
+
 // The minimum forests depend on the edges' ids and ranks, not on how the nodes are
 // numbered: a grid whose edges come in its nodes' order and the same grid with its nodes
 // scattered (most lowerings then go through the second pass of the rounds, past the

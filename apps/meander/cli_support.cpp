@@ -76,6 +76,10 @@ void add_max_faces(CLI::App& app, int64_t& max_faces) {
   app.add_option("--max-faces", max_faces, "refuse an input, or a surface remeshed to --spacing, of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
 }
 
+std::string leaves_note(const TriangleCycle& cycle) {
+  return "tree: " + std::to_string(cycle.leaves) + " leaves (the tips of the curve's branches; --branches sets how many)";
+}
+
 bool reorders(const CurveJob& job) { return job.quadrangulation != Quadrangulation::none; }
 
 void StageLog::lap(std::string_view stage) {

@@ -34,6 +34,9 @@ template <class Job> void add_parameters(CLI::App& app, Job& job);
 void add_max_faces(CLI::App& app, int64_t& max_faces);
 // Whether the input may be put in another order before `job` (RepairOptions::reorder):
 // not under --quad none, which refuses a face that is not a quad by its number.
+// What -v says of the cycle's tree (made with CycleOptions::count_leaves).
+std::string leaves_note(const TriangleCycle& cycle);
+
 bool reorders(const CurveJob& job);
 
 // Refuses (UsageError, naming `input`), before it is made, a result of this many

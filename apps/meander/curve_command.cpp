@@ -29,6 +29,7 @@ void run_curve(const CurveArgs& a) {
   // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
   job.sample = !a.png.empty();
   job.output = a.output;
+  job.cycle.count_leaves = a.verbose;
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -52,6 +53,7 @@ void run_curve(const CurveArgs& a) {
     log.lap("render png");
   }
   const int32_t curves = result.cycle.num_cycles();
+  log.note(leaves_note(result.cycle));
   log.note("wrote " + a.output + ": " + std::to_string(curves) + " closed curve" + (curves == 1 ? "" : "s") + ", " +
            std::to_string(points) + " points");
   if (!a.triangles.empty())

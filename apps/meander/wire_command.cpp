@@ -56,6 +56,7 @@ void run_wire(const WireArgs& a) {
   check_parameters(job);
   CurveJob curve_job = wire_curve_job(job);
   curve_job.max_faces = a.max_faces;
+  curve_job.cycle.count_leaves = a.verbose;
   require_output_path(a.output, {".stl", ".ply", ".obj", ".off", ".glb", ".3mf"}, "-o");
   if (!a.report.empty()) require_output_path(a.report, {".json"}, "--report");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -67,6 +68,7 @@ void run_wire(const WireArgs& a) {
   const CurveResult curve =
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), curve_job, &times); });
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.note(leaves_note(curve.cycle));
   times.clear();
   if (const std::vector<std::string> notes = slab_mesh_notes(curve, job); !notes.empty()) {
     std::string said = notes[0];

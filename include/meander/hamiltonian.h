@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +19,12 @@ namespace meander {
 struct CycleOptions {
   TreeStrategy tree = TreeStrategy::random;
   uint64_t seed = 1;
+  // Set: the tree is branching_forest's with this waviness (0 long snakes .. 1 many short
+  // branches) instead of `tree`'s, which must then be random, the default (the others
+  // are trees of their own: ParameterError).
+  std::optional<double> branches;
+  // Count the tree's leaves into TriangleCycle::leaves (a pass over the tree).
+  bool count_leaves = false;
   // The diagonals to start from, one per quad as TriangleCycle::diagonal (half quads 0);
   // empty: every quad starts split along corners 0-2. The duotone's flip rule starts
   // from random ones, as the paper's Section 5.3 does.
@@ -34,6 +41,9 @@ struct TriangleCycle {
   std::vector<int32_t> order;
   std::vector<int32_t> cycle_start{0};
   std::vector<uint8_t> diagonal;
+  // With CycleOptions::count_leaves: the spanning tree's leaves, each the tip of a branch
+  // of the meander; -1 otherwise.
+  int64_t leaves = -1;
 
   int32_t num_cycles() const { return int32_t(cycle_start.size()) - 1; }
   int32_t num_triangles() const { return int32_t(order.size()); }

@@ -31,7 +31,8 @@ struct Parameter {
 // The value of parameter p from text, as the CLI gets it and the studio gets names:
 // throws ParameterError naming p ("samples: expected an integer in [1, 1000], got 0").
 // T is int, uint64_t, double, bool, one of the jobs' enums, std::optional<double> (a
-// positive number, or p's one choice for none: radius "auto", spacing "none") or
+// number in p's range where it has one, else a positive number, or p's one choice for
+// none: radius "auto", spacing "none") or
 // std::array<Color8, 2> (colors).
 template <class T> void set_parameter(const Parameter& p, std::string_view text, T& value);
 
@@ -66,6 +67,7 @@ inline constexpr std::string_view shape_choices[] = {"wire", "ribbon"};
 inline constexpr std::string_view radius_choices[] = {"auto"};
 inline constexpr std::string_view spacing_choices[] = {"none"};
 inline constexpr std::string_view model_size_choices[] = {"none"};
+inline constexpr std::string_view branches_choices[] = {"none"};
 inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
 inline constexpr std::string_view rule_choices[] = {"tree", "flip"};
 inline constexpr std::string_view tiles_choices[] = {"truchet", "outline", "triangles", "stripes", "dots"};
@@ -75,6 +77,13 @@ inline constexpr Parameter tree{.name = "tree",
                                 .help = "spanning tree strategy: the style of the meander (shaped: random, preferring "
                                         "well-shaped triangles)",
                                 .choices = tree_choices};
+inline constexpr Parameter branches{.name = "branches",
+                                    .help = "the waviness of the curve, continuously from long snakes (0) to many "
+                                            "short branches (1): the random tree grown by that rule (none: --tree's "
+                                            "own; -v prints the tree's leaves, the branches' tips)",
+                                    .min = 0,
+                                    .max = 1,
+                                    .choices = branches_choices};
 inline constexpr Parameter seed{.name = "seed", .help = "random seed (same seed, same output)"};
 inline constexpr Parameter smooth{.name = "smooth", .help = "smoothing of the control polygon", .choices = smooth_choices};
 inline constexpr Parameter samples{.name = "samples", .help = "points per control polygon segment", .min = 1, .max = 1000};
@@ -163,6 +172,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::relax, job.relax);
     visit(parameters::quad, job.quadrangulation);
     visit(parameters::tree, job.cycle.tree);
+    visit(parameters::branches, job.cycle.branches);
     visit(parameters::seed, job.cycle.seed);
     visit(parameters::smooth, job.curve.smoothing);
     visit(parameters::samples, job.curve.samples);

@@ -148,6 +148,9 @@ TriangleCycle loops_of(const QuadMesh& m, std::vector<uint8_t> diagonal, const W
 
 TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, const WalkObserver* observer) {
   require_cycle_size(m);
+  if (options.branches && options.tree != TreeStrategy::random)
+    throw ParameterError("branches", " grows a tree of its own, so it combines only with the random tree (the default), not " +
+                                         std::string(to_string(options.tree)));
   const int32_t nq = m.num_quads();
   const bool initial = !options.initial_diagonal.empty();
   if (initial && int64_t(options.initial_diagonal.size()) != nq)
@@ -196,14 +199,19 @@ TriangleCycle hamiltonian_cycle(const QuadMesh& m, const CycleOptions& options, 
   // per component (ALGORITHM-NOTES). Flips commute: only the final diagonals matter.
   // The forest and the loops' names are freed before the walk lays out its order (114
   // MiB on the 10M sphere, with the quad mesh the largest thing it holds).
+  int64_t leaves = -1;
   {
-    const std::vector<int32_t> forest = spanning_forest(graph, options.tree, options.seed);
+    const std::vector<int32_t> forest = options.branches ? branching_forest(graph, *options.branches, options.seed)
+                                                         : spanning_forest(graph, options.tree, options.seed);
+    if (options.count_leaves) leaves = count_leaves(graph, forest);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i < r.end(); ++i) diagonal[size_t(forest[i])] ^= 1; // each quad once
     });
   }
   std::vector<int32_t>().swap(loop);
-  return loops_of(m, std::move(diagonal), observer);
+  TriangleCycle cycle = loops_of(m, std::move(diagonal), observer);
+  cycle.leaves = leaves;
+  return cycle;
 }
 
 TriangleCycle triangle_loops(const QuadMesh& m, std::vector<uint8_t> diagonal) {

@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -410,6 +411,46 @@ std::vector<int32_t> depth_first(const EdgeTable& g, Random& rng) {
   return forest;
 }
 
+// A depth-first walk (long snakes, few leaves) in which, with probability `branches`, the
+// node it stands on first takes all its neighbours still outside the tree as children:
+// those it does not walk on from are leaves, so the more often, the more short branches.
+// Each node scans its neighbours once from a random offset, as in depth_first, so the
+// work is linear.
+std::vector<int32_t> branching_walk(const EdgeTable& g, Random& rng, double branches) {
+  const Adjacency a = build_adjacency(g);
+  const RotatedNodes nodes(g.num_nodes, rng);
+  std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
+  std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
+  std::vector<int32_t> forest, stack;
+  forest.reserve(size_t(g.num_nodes));
+  auto enter = [&](int32_t n) {
+    seen[size_t(n)] = 1;
+    offset[size_t(n)] = int32_t(rng.below(uint32_t(std::max(1, a.degree(n)))));
+    stack.push_back(n);
+  };
+  for (int32_t i = 0; i < g.num_nodes; ++i) {
+    if (seen[size_t(nodes[i])]) continue;
+    enter(nodes[i]);
+    while (!stack.empty()) {
+      const int32_t u = stack.back();
+      if (scanned[size_t(u)] == a.degree(u)) {
+        stack.pop_back();
+        continue;
+      }
+      const bool all = rng.unit() < branches;
+      do {
+        const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % a.degree(u);
+        const auto [n, e] = a.adjacent[size_t(k)];
+        if (seen[size_t(n)]) continue;
+        forest.push_back(e);
+        enter(n);
+        if (!all) break;
+      } while (scanned[size_t(u)] < a.degree(u));
+    }
+  }
+  return forest;
+}
+
 // Wilson's algorithm: loop-erased random walks from each node until they hit the tree.
 // The walk remembers only the last edge it left each node by, which erases loops.
 std::vector<int32_t> wilson(const EdgeTable& g, Random& rng) {
@@ -447,19 +488,21 @@ std::vector<int32_t> wilson(const EdgeTable& g, Random& rng) {
   return forest;
 }
 
-// spanning_forest; `count_all` as for minimum_forest.
-std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed, bool count_all) {
+// spanning_forest; `count_all` as for minimum_forest; `branches` set: branching_walk.
+std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed, bool count_all,
+                               std::optional<double> branches = std::nullopt) {
   const size_t m = size_t(graph.num_edges);
   // Increasing order through a mark per edge: linear, unlike sorting, and parallel (each
   // edge is marked once). The minimum forest marks its edges as it finds them.
   std::vector<uint8_t> in_forest;
-  if (strategy == TreeStrategy::random || strategy == TreeStrategy::shaped) {
+  if (!branches && (strategy == TreeStrategy::random || strategy == TreeStrategy::shaped)) {
     in_forest = minimum_forest(graph, seed, strategy == TreeStrategy::shaped, count_all);
   } else {
     Random rng(seed);
-    const std::vector<int32_t> forest = strategy == TreeStrategy::uniform ? wilson(graph, rng)
-                                        : strategy == TreeStrategy::bfs   ? breadth_first(graph, rng)
-                                                                          : depth_first(graph, rng);
+    const std::vector<int32_t> forest = branches                             ? branching_walk(graph, rng, *branches)
+                                        : strategy == TreeStrategy::uniform ? wilson(graph, rng)
+                                        : strategy == TreeStrategy::bfs     ? breadth_first(graph, rng)
+                                                                            : depth_first(graph, rng);
     in_forest.assign(m, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, forest.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i < r.end(); ++i) in_forest[size_t(forest[i])] = 1;
@@ -480,6 +523,19 @@ std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, ui
 
 std::vector<int32_t> spanning_forest(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed) {
   return forest_of(graph, strategy, seed, false);
+}
+
+std::vector<int32_t> branching_forest(const EdgeTable& graph, double branches, uint64_t seed) {
+  if (!(branches >= 0 && branches <= 1)) throw ParameterError("branches", " must be a number from 0 to 1");
+  return forest_of(graph, TreeStrategy::random, seed, false, branches);
+}
+
+int64_t count_leaves(const EdgeTable& graph, std::span<const int32_t> forest) {
+  std::vector<uint8_t> degree(size_t(graph.num_nodes), 0); // saturating at 2: only 1 matters
+  for (const int32_t e : forest)
+    for (const int32_t n : graph.ends(e))
+      if (degree[size_t(n)] < 2) ++degree[size_t(n)];
+  return std::count(degree.begin(), degree.end(), uint8_t(1));
 }
 
 std::vector<int32_t> spanning_forest(const Graph& graph, TreeStrategy strategy, uint64_t seed) {

@@ -78,10 +78,12 @@ template <class Job> void check_numbers(const Job& job) {
   visit_parameters(job, [](const Parameter& p, const auto& value) {
     using V = std::decay_t<decltype(value)>;
     if constexpr (std::is_arithmetic_v<V> && !std::is_same_v<V, bool>) check_parameter(p, double(value), std::is_integral_v<V>);
-    else if constexpr (std::is_same_v<V, std::optional<double>>)
-      if (value && !(*value > 0 && std::isfinite(*value)))
+    else if constexpr (std::is_same_v<V, std::optional<double>>) {
+      if (value && std::isfinite(p.max)) check_parameter(p, *value, false);
+      else if (value && !(*value > 0 && std::isfinite(*value)))
         throw ParameterError(p.name, " must be a positive number or " + std::string(p.choices[0]) + " (got " +
                                          number_text(*value) + ")");
+    }
   });
 }
 
@@ -114,8 +116,13 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
     const auto [digits, millimetres] = split_unit(p, text);
     double r = 0;
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), r);
-    if (error != std::errc() || end != digits.data() + digits.size() || !(r > 0) || !std::isfinite(r))
-      throw ParameterError(p.name, ": expected a positive number or " + std::string(p.choices[0]) + ", got " + shown(text));
+    const bool ranged = std::isfinite(p.max);
+    if (error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(r) ||
+        (ranged ? r < p.min || r > p.max : !(r > 0)))
+      throw ParameterError(p.name, ": expected " +
+                                       (ranged ? "a number in [" + number_text(p.min) + ", " + number_text(p.max) + "]"
+                                               : std::string("a positive number")) +
+                                       " or " + std::string(p.choices[0]) + ", got " + shown(text));
     value = r * millimetres;
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     value = parse_duotone_colors(text); // its refusals name the parameter
