@@ -33,6 +33,8 @@ demo: build
 	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.obj --triangles out/pretzel_cycle.obj --png out/pretzel.png --verbose
 	./$(BUILD)/meander curve out/pretzel.obj -o out/pretzel_curve.svg
 	./$(BUILD)/meander wire out/pretzel.obj -o out/pretzel_wire.stl --samples 2 --report out/pretzel_wire.json --png out/pretzel_wire.png --size 800x600
+	./$(BUILD)/meander wire out/pretzel.obj -o out/pretzel_wire_100mm.stl --model-size 100mm --spacing 3mm --report out/pretzel_wire_100mm.json --png out/pretzel_wire_100mm.png --size 800x600
+	@grep -q '"printable": true' out/pretzel_wire_100mm.json && echo "demo: out/pretzel_wire_100mm.stl is a wire of the pretzel 100 mm long, its passes 3 mm apart: printable with a 0.4 mm nozzle (out/pretzel_wire_100mm.json)"
 	@echo "demo: outputs are in out/"
 
 # The suite in the Release build, the same suite again under the sanitizers (which also

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the figures of docs/density.md with Meander itself: a scan (the kitten of
-# ../shared/meshes) at its own density and at three spacings, at 1/60 also unrelaxed, and
-# the evenness table.
+# ../shared/meshes) at its own density and at three spacings, at 1/60 also unrelaxed and
+# at three branches, the evenness table, and a printable 100 mm wire of the pretzel.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 meander=${MEANDER:-build/meander}
@@ -25,3 +25,13 @@ done
   --png docs/images/density_kitten_60_unrelaxed.png "${picture[@]}"
 echo "spacing 0.0443 without relaxation:"
 "$meander" info "$kitten" --curve "$scratch/raw.ply" | grep -E "gap|coverage"
+# Branches: the same spacing with the waviness at 0, 0.5 and 1 (-v prints the leaves).
+for branches in 0 0.5 1; do
+  "$meander" curve "$kitten" -o "$scratch/b.ply" --spacing 0.0443 --branches "$branches" -v \
+    --png "docs/images/density_kitten_branches_$branches.png" "${picture[@]}" 2>&1 | grep "leaves" |
+    sed "s/^/branches $branches: /"
+done
+# A printable wire 100 mm long of the generated pretzel, with its report.
+"$meander" generate pretzel --faces 6400 -o "$scratch/pretzel.obj" > /dev/null
+"$meander" wire "$scratch/pretzel.obj" -o "$scratch/pretzel_wire.stl" --model-size 100mm --spacing 3mm \
+  --png docs/images/density_pretzel_wire_100mm.png --size 640x480

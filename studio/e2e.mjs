@@ -1,7 +1,7 @@
 // End-to-end test of the studio in a real browser (Playwright driving Debian's Chromium):
 //   node e2e.mjs MEANDER_BINARY OUTPUT_FOLDER
-// Starts `meander serve` on a free port, loads the demo model, switches to a variable
-// wire, moves the s slider and checks the wire in the scene changed, downloads the STL
+// Starts `meander serve` on a free port, loads the demo model, turns the spacing on and
+// moves its slider and the branches slider, switches to a variable wire, moves the s slider and checks the wire in the scene changed, downloads the STL
 // and checks it is a valid binary STL, shows a duotone, shows a bad file's error, and saves
 // screenshots to OUTPUT_FOLDER/studio_e2e.png and studio_e2e_duotone.png. Exits 0 with a
 // message, without testing, only when Chromium is not installed and CI is not set.
@@ -73,6 +73,49 @@ try {
   await page.click('#demo');
   await settled(0);
   check((await page.evaluate(() => window.studio.resultInfo())).lines, 'the demo model first shows its curve');
+
+  // Size and density: turning the spacing on shows the measured median gap beside the
+  // slider's value; moving the slider (log scale) changes it; the branches slider sets the
+  // tree's leaves. Both are turned off again for what follows.
+  const sliderTo = (id, value) => page.evaluate(([i, v]) => {
+    const s = document.getElementById(i);
+    s.value = v;
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+    s.dispatchEvent(new Event('change', { bubbles: true }));
+  }, [id, value]);
+  const full = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r &&
+    !window.studio.state.stats.preview, after);
+  let revision = await page.evaluate(() => window.studio.state.revision);
+  await page.check('#spacing-on');
+  await full(revision);
+  const coarse = await page.evaluate(() => ({ stats: window.studio.state.stats, shown: document.getElementById('spacing-value').textContent }));
+  check(coarse.stats.gap_median > 0 && coarse.stats.gap_cv < 0.15,
+    `a spacing shows an even curve's median gap (${JSON.stringify(coarse.stats)})`);
+  check(Math.abs(coarse.stats.gap_median / Number(coarse.shown) - 1) < 0.15,
+    `the median gap ${coarse.stats.gap_median} is the spacing shown, ${coarse.shown}`);
+  revision = await page.evaluate(() => window.studio.state.revision);
+  await sliderTo('spacing', '30');
+  await full(revision);
+  const fine = await page.evaluate(() => window.studio.state.stats);
+  check(fine.gap_median < 0.8 * coarse.stats.gap_median && fine.curve_length > coarse.stats.curve_length,
+    `moving the spacing slider down gives a finer, longer curve (${fine.gap_median} after ${coarse.stats.gap_median})`);
+  revision = await page.evaluate(() => window.studio.state.revision);
+  await page.check('#branches-on');
+  await sliderTo('branches', '0');
+  await full(revision);
+  const snakes = await page.evaluate(() => window.studio.state.stats.leaves);
+  revision = await page.evaluate(() => window.studio.state.revision);
+  await sliderTo('branches', '1');
+  await full(revision);
+  const bushes = await page.evaluate(() => window.studio.state.stats.leaves);
+  check(snakes > 0 && bushes > snakes, `the branches slider from 0 to 1 gives more branch tips (${snakes} -> ${bushes})`);
+  revision = await page.evaluate(() => window.studio.state.revision);
+  await page.uncheck('#branches-on');
+  await full(revision);
+  revision = await page.evaluate(() => window.studio.state.revision);
+  await page.uncheck('#spacing-on');
+  await full(revision);
+  check((await page.evaluate(() => window.studio.state.stats)).gap_median === undefined, 'without a spacing no gap is measured');
 
   // The control mesh (no subdivision) keeps the test quick; the wire is made all the same.
   await page.evaluate(() => {

@@ -121,6 +121,33 @@ TEST_F(CliModelSize, FilesAreInMillimetresAndGltfInMetres) {
   EXPECT_NEAR(bounding_box(read_mesh(out("a.ply")).positions).largest_side(), 101.6, 0.5);
 }
 
+// The demo's printable wire: with a model size a wire is judged in millimetres against
+// the nozzle (2 nozzles thick, a nozzle apart), its radius a fifth of the spacing; without
+// one the report gives the smallest size it prints at.
+TEST_F(CliModelSize, AWireIsJudgedAgainstTheNozzle) {
+  const test::CommandResult sized = test::run_cli(
+      {"wire", mesh_, "-o", out("wire.stl"), "--model-size", "100mm", "--spacing", "3mm", "--report", out("sized.json")});
+  ASSERT_EQ(sized.exit_code, 0) << sized.err;
+  EXPECT_NE(sized.err.find(": printable. Radius 0.6 (auto)"), std::string::npos) << sized.err;
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(out("sized.json")));
+  EXPECT_TRUE(report["printable"].get<bool>());
+  EXPECT_EQ(report["required_thickness"].get<double>(), 0.8);
+  EXPECT_EQ(report["required_gap"].get<double>(), 0.4);
+  EXPECT_GE(report["min_thickness"].get<double>(), 0.8);
+  EXPECT_GE(report["min_gap"].get<double>(), 0.4);
+  // A coarser nozzle than the gaps allow makes it not printable, naming the gap.
+  const test::CommandResult coarse = test::run_cli({"wire", mesh_, "-o", out("wire.stl"), "--model-size", "100mm",
+                                                    "--spacing", "3mm", "--nozzle", "2mm"});
+  ASSERT_EQ(coarse.exit_code, 0) << coarse.err;
+  EXPECT_NE(coarse.err.find("narrower than the 2 required"), std::string::npos) << coarse.err;
+  EXPECT_NE(coarse.err.find(": not printable."), std::string::npos) << coarse.err;
+  // Without a model size: in the model's units, with the smallest size it prints at.
+  const test::CommandResult plain = test::run_cli({"wire", mesh_, "-o", out("wire.stl"), "--report", out("plain.json")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find("prints with a 0.4 mm nozzle from "), std::string::npos) << plain.err;
+  EXPECT_GT(nlohmann::json::parse(test::read_file(out("plain.json")))["smallest_printable_size"].get<double>(), 0);
+}
+
 TEST(StudioModelSize, TakesLengthsWithUnitsOnlyWithASize) {
   const MakeRequest sized =
       parse_make_request(R"({"session": "x", "mode": "constant-wire", "model_size": "10cm", "spacing": "3mm", "radius": "0.5mm"})");

@@ -116,6 +116,38 @@ TEST(Printability, RequiredThicknessJudgesTheMinimum) {
   EXPECT_THROW(check_printability(cube_at({0, 0, 0}), {.required_thickness = NAN}), UsageError);
 }
 
+// With a nozzle, the narrowest gap between parts is measured (rays outward) and judged
+// against the required gap, and the report gives the smallest size the mesh prints at.
+TEST(Printability, NozzleMeasuresTheGapsAndTheSmallestSize) {
+  // Two unit spheres whose surfaces are 1 apart along x.
+  const PolygonMesh two = test::side_by_side(sphere(4000), sphere(4000), {3, 0, 0});
+  const PrintabilityReport r = check_printability(two, {.nozzle = 0.1});
+  ASSERT_TRUE(r.gaps_checked);
+  EXPECT_NEAR(r.min_gap, 1, 0.02);
+  EXPECT_NEAR(r.min_thickness, 2, 0.02);
+  // Largest side 5; scaled by 0.1 they are 0.2 thick (2 nozzles) and 0.1 apart (1 nozzle).
+  EXPECT_NEAR(r.smallest_size, 5 * 0.1 * std::max(1 / r.min_thickness * 2, 1 / r.min_gap), 1e-9);
+  EXPECT_NEAR(r.smallest_size, 0.5, 0.02);
+  EXPECT_TRUE(r.printable());
+  EXPECT_NE(printability_summary(r).find(", narrowest gap 1"), std::string::npos) << printability_summary(r);
+  EXPECT_NE(printability_summary(r).find("prints with a 0.1 mm nozzle from 0.5"), std::string::npos) << printability_summary(r);
+  const PrintabilityReport close = check_printability(two, {.nozzle = 0.1, .required_gap = 1.1});
+  EXPECT_TRUE(close.too_close());
+  EXPECT_FALSE(close.printable());
+  const auto json = nlohmann::json::parse(printability_json(close));
+  EXPECT_TRUE(json["too_close"].get<bool>());
+  EXPECT_NEAR(json["min_gap"].get<double>(), 1, 0.02);
+  EXPECT_EQ(json["nozzle"].get<double>(), 0.1);
+  // Without a nozzle nothing of it is measured or written.
+  const PrintabilityReport plain = check_printability(two);
+  EXPECT_FALSE(plain.gaps_checked);
+  EXPECT_FALSE(nlohmann::json::parse(printability_json(plain)).contains("min_gap"));
+  // A lone sphere has no gap: it prints from the size at which it is 2 nozzles thick.
+  const PrintabilityReport one = check_printability(sphere(4000), {.nozzle = 0.1});
+  EXPECT_EQ(one.min_gap, INFINITY);
+  EXPECT_NEAR(one.smallest_size, 0.2, 0.01);
+}
+
 TEST(Printability, SphereVolumeAndThickness) {
   const PrintabilityReport r = check_printability(sphere(20000));
   EXPECT_TRUE(r.watertight);

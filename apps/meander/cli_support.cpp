@@ -47,7 +47,7 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
     CLI::Option* option = app.add_option_function<std::string>(
         name,
         [&app, &p, &value](const std::string& text) {
-          if (p.length && &p != &parameters::model_size && has_unit(text) && app.count(option_name(parameters::model_size.name)) == 0)
+          if (p.length && &p != &parameters::model_size && &p != &parameters::nozzle && has_unit(text) && app.count(option_name(parameters::model_size.name)) == 0)
             throw ParameterError(p.name, ": " + text + " carries a unit, which needs " +
                                              option_name(parameters::model_size.name) +
                                              " (without it, lengths are in the model's own units)");

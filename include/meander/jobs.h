@@ -43,6 +43,10 @@ struct WireJob {
   bool report = true;
   bool measure_thickness = true;
   double min_thickness = 0;
+  // The nozzle width in millimetres: with curve.model_size, min_thickness defaults to 2
+  // nozzles and parts of the wire must keep a nozzle apart; the report also gives the
+  // smallest size the wire prints at (PrintabilityOptions::nozzle).
+  double nozzle = 0.4;
 };
 
 // The curve job a wire is made on: job.curve, with the slab mesh of the variable method.

@@ -24,7 +24,7 @@ struct Parameter {
   // Names: the accepted ones (radius, a positive number or a name, lists its name).
   std::span<const std::string_view> choices;
   // A length: its value may carry a unit (mm, cm, m, in), and is then in millimetres,
-  // which only a model size allows (has_unit).
+  // which only a model size allows (has_unit), but for the nozzle, always in millimetres.
   bool length = false;
 };
 
@@ -113,7 +113,8 @@ inline constexpr Parameter method{.name = "method",
 inline constexpr Parameter shape{.name = "shape", .help = "wire (closed tube) or ribbon (band on the surface)", .choices = shape_choices};
 inline constexpr Parameter radius{.name = "radius",
                                   .help = "constant: tube radius or half the ribbon width in mesh units (millimetres "
-                                          "with a model size), or auto: the largest that does not self-intersect",
+                                          "with a model size), or auto: the largest that does not self-intersect (with "
+                                          "--spacing: a fifth of the spacing, or less where the curve comes nearer)",
                                   .choices = radius_choices,
                                   .length = true};
 inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon", .min = 3, .max = 64};
@@ -140,6 +141,14 @@ inline constexpr Parameter min_thickness{.name = "min_thickness",
                                                  "thinner is reported as not printable",
                                          .min = 0,
                                          .length = true};
+inline constexpr Parameter nozzle{.name = "nozzle",
+                                  .help = "wire: the printer's nozzle width in millimetres: with a model size a wire is "
+                                          "printable only if at least 2 nozzles thick (unless --min-thickness says "
+                                          "otherwise) with its parts a nozzle apart; without one, the report says the "
+                                          "smallest size it prints at",
+                                  .min = 0.01,
+                                  .max = 10,
+                                  .length = true};
 
 inline constexpr Parameter duotone_quad{.name = "quad",
                                         .help = "2-colourable quads: catmull-clark (dual-simplest on a mesh with "
@@ -189,6 +198,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::keep_faces, job.keep_faces);
     visit(parameters::levels, job.levels);
     visit(parameters::min_thickness, job.min_thickness);
+    visit(parameters::nozzle, job.nozzle);
   } else {
     visit(parameters::model_size, job.model_size);
     visit(parameters::spacing, job.spacing);

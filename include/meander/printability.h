@@ -34,6 +34,14 @@ struct PrintabilityOptions {
   // for a filament printer, a few tenths of a millimetre for resin): a mesh thinner
   // anywhere is not printable. 0: thickness is reported, not judged.
   double required_thickness = 0;
+  // > 0 (with thickness): also measure the narrowest gap between parts of the mesh (a
+  // ray outward from each vertex, as the thickness's inward) and the smallest size at
+  // which the mesh, scaled, is 2 nozzles thick and its parts a nozzle apart, in the
+  // nozzle's units (millimetres).
+  double nozzle = 0;
+  // The narrowest gap the printer keeps open, in mesh units (a nozzle width): parts of
+  // the mesh nearer anywhere make it not printable. 0: the gap is not judged.
+  double required_gap = 0;
 };
 
 // One edge-connected component, as inspect() numbers them (by their first face).
@@ -87,11 +95,25 @@ struct PrintabilityReport {
   int32_t thinnest_vertex = -1;
   double required_thickness = 0; // PrintabilityOptions::required_thickness
 
+  // With PrintabilityOptions::nozzle: the distance from each vertex along its outward
+  // normal to the first surface hit, the least over all vertices (infinite when nothing
+  // was hit), and the smallest largest side of the bounding box at which the mesh would
+  // be 2 nozzles thick and its parts a nozzle apart.
+  bool gaps_checked = false;
+  double min_gap = INFINITY;
+  int32_t narrowest_vertex = -1;
+  double required_gap = 0; // PrintabilityOptions::required_gap
+  double nozzle = 0;
+  double smallest_size = INFINITY;
+
   // A required thickness was given and the mesh is thinner somewhere, or its thickness
   // could not be measured (an open mesh).
   bool too_thin() const;
+  // A required gap was given and parts of the mesh come nearer somewhere, or the gap
+  // was not measured.
+  bool too_close() const;
   // Watertight, positive volume in every component, no self-intersection found, and not
-  // too thin.
+  // too thin or too close.
   bool printable() const;
 };
 

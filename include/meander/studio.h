@@ -8,6 +8,7 @@
 #include "meander/check.h"
 #include "meander/curve.h"
 #include "meander/duotone.h"
+#include "meander/evenness.h"
 #include "meander/jobs.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -92,6 +94,8 @@ struct StudioResult {
   // and its separating curves.
   CurveResult curve;
   double curve_length = 0;
+  // With a spacing (not in a preview or a duotone): how evenly the curve covers the input.
+  std::optional<EvennessReport> evenness;
   PolygonMesh mesh;        // the wire, ribbon or duotone surface; empty in curve mode
   Appearance appearance;   // duotone: the tile atlas and texture coordinates of `mesh`
   double radius = 0;     // constant modes: the radius used (auto resolved)
@@ -121,6 +125,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
                                 const StudioResult* previous = nullptr);
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
+// leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
 // for wires and ribbons vertices, faces, radius and (not for a preview, which has no
 // report) watertight, self_intersecting, volume, printable, and for duotone quads, faces, notes.
 std::string studio_stats_json(const StudioResult& result);

@@ -55,9 +55,14 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
   WireResult result;
   bool known_clear = false; // variable_wire searched its result already
   if (job.method == WireMethod::constant) {
-    // A curve moved onto the input surface (CurveJob::spacing) is swept where it lies.
-    ConstantWire made = curve.normals.empty() ? constant_wire(curve.quads, curve.cycle, constant_options(job))
-                                              : constant_wire(curve.curves, curve.normals, constant_options(job));
+    // A curve moved onto the input surface (CurveJob::spacing) is swept where it lies, by
+    // default a fifth of the spacing thick, so that neighbouring passes stay clear by
+    // more than half a spacing, or less where the curve comes nearer.
+    ConstantWireOptions options = constant_options(job);
+    if (!curve.normals.empty() && !options.radius && job.curve.spacing)
+      if (const double clear = max_wire_radius(curve.curves, 4); clear > 0) options.radius = std::min(0.2 * *job.curve.spacing, clear);
+    ConstantWire made = curve.normals.empty() ? constant_wire(curve.quads, curve.cycle, options)
+                                              : constant_wire(curve.curves, curve.normals, options);
     if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");
     result.mesh = std::move(made.mesh);
     result.radius = made.radius;
@@ -68,9 +73,15 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
   }
   lap(times, "wire", start);
   if (!job.report) return result;
-  result.report = check_printability(result.mesh, {.known_clear = known_clear,
-                                                   .thickness = job.measure_thickness && job.shape == WireShape::wire,
-                                                   .required_thickness = job.min_thickness});
+  // In millimetres (a model size), thickness and gaps are judged against the nozzle.
+  const bool millimetres = job.curve.model_size.has_value();
+  const bool thickness = job.measure_thickness && job.shape == WireShape::wire;
+  result.report = check_printability(
+      result.mesh, {.known_clear = known_clear,
+                    .thickness = thickness,
+                    .required_thickness = job.min_thickness > 0 ? job.min_thickness : millimetres ? 2 * job.nozzle : 0,
+                    .nozzle = thickness ? job.nozzle : 0,
+                    .required_gap = millimetres && thickness ? job.nozzle : 0});
   if (result.report.self_intersecting) result.surface_crossings = crossing_cycle_triangles(curve.quads, curve.cycle);
   lap(times, "report", start);
   return result;

@@ -163,7 +163,7 @@ void refuse_units_without_model_size(const json& document, const StudioParams& p
   const auto check = [&](const auto& job) {
     visit_parameters(job, [&](const Parameter& parameter, const auto&) {
       const auto value = document.find(std::string(parameter.name));
-      if (parameter.length && value != document.end() && value->is_string() && has_unit(value->template get<std::string>()))
+      if (parameter.length && &parameter != &parameters::nozzle && value != document.end() && value->is_string() && has_unit(value->template get<std::string>()))
         throw ParameterError(parameter.name, ": " + value->template get<std::string>() +
                                                  " carries a unit, which needs model_size (without it, lengths are in "
                                                  "the model's own units)");
@@ -346,9 +346,14 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   WireJob job = params.wire;
   job.measure_thickness = false; // the live view's stats: rays cost more than the wire
   result.curve = about_surface([&] {
-    return make_curve(input.mesh, input.connectivity, mode == StudioMode::curve ? job.curve : wire_curve_job(job));
+    CurveJob curve_job = mode == StudioMode::curve ? job.curve : wire_curve_job(job);
+    curve_job.cycle.count_leaves = true;
+    return make_curve(input.mesh, input.connectivity, curve_job);
   });
   result.curve_length = total_length(result.curve.curves);
+  // How even a curve of a chosen spacing came out, for the stats beside it.
+  if (job.curve.spacing && !params.preview && result.curve.surface.num_faces() > 0)
+    result.evenness = measure_evenness(result.curve.surface, result.curve.curves, {.surface_samples = 10000});
   if (mode == StudioMode::curve) {
     result.triangles = int64_t(result.curve.cycle.order.size());
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -394,6 +399,11 @@ std::string studio_stats_json(const StudioResult& result) {
                 {"curve_points", curves.points.size()},
                 {"curve_length", result.curve_length},
                 {"seconds", result.seconds}};
+  if (result.curve.cycle.leaves >= 0) stats["leaves"] = result.curve.cycle.leaves;
+  if (result.evenness) {
+    stats["gap_median"] = result.evenness->gap_median;
+    stats["gap_cv"] = result.evenness->gap_cv;
+  }
   if (result.params.mode == StudioMode::duotone) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();

@@ -415,7 +415,7 @@ void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
 // edges and vertices are not lost. The float distance is kept as it is: it does not
 // depend on which of several triangles tied at it Embree's tree reports, so the result
 // does not depend on the number of threads the tree was built with.
-void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::vector<int8_t>& inward,
+void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::vector<int8_t>& inward, bool gaps,
                    PrintabilityReport& report) {
   const int32_t nv = mesh.num_vertices();
   // Float, and no per-vertex result kept (a reduction instead): on large meshes the
@@ -492,11 +492,13 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
           order.push_back(v);
         }
   }
-  // The least (thickness, vertex): the same whatever the order and the split into tasks.
-  using Thinnest = std::pair<double, int32_t>;
-  const Thinnest thinnest = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, order.size(), 1024), Thinnest{INFINITY, -1},
-      [&](const tbb::blocked_range<size_t>& r, Thinnest best) {
+  // The least (distance, vertex) inward and outward: the same whatever the order and the
+  // split into tasks.
+  using Least = std::pair<double, int32_t>;
+  using Both = std::array<Least, 2>;
+  const Both least = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, order.size(), 1024), Both{Least{INFINITY, -1}, Least{INFINITY, -1}},
+      [&](const tbb::blocked_range<size_t>& r, Both best) {
         VertexRayContext context;
         rtcInitIntersectContext(&context.context);
         context.corners = tris.corners.data();
@@ -506,28 +508,35 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
           const Vec3 n = normal[size_t(v)];
           const double length = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
           if (side == 0 || length == 0) continue;
-          const double scale = side / length;
           const Vec3 origin = mesh.positions[size_t(v)];
           context.vertex = v;
-          RTCRayHit rh{};
-          rh.ray.org_x = origin.x;
-          rh.ray.org_y = origin.y;
-          rh.ray.org_z = origin.z;
-          rh.ray.dir_x = float(n.x * scale);
-          rh.ray.dir_y = float(n.y * scale);
-          rh.ray.dir_z = float(n.z * scale);
-          rh.ray.tnear = 0;
-          rh.ray.tfar = INFINITY;
-          rh.ray.mask = 0xffffffffu;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene.scene(), &context.context, &rh);
-          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) best = std::min(best, Thinnest{double(rh.ray.tfar), v});
+          for (int way = 0; way < (gaps ? 2 : 1); ++way) {
+            const double scale = (way == 0 ? side : -side) / length;
+            RTCRayHit rh{};
+            rh.ray.org_x = origin.x;
+            rh.ray.org_y = origin.y;
+            rh.ray.org_z = origin.z;
+            rh.ray.dir_x = float(n.x * scale);
+            rh.ray.dir_y = float(n.y * scale);
+            rh.ray.dir_z = float(n.z * scale);
+            rh.ray.tnear = 0;
+            rh.ray.tfar = INFINITY;
+            rh.ray.mask = 0xffffffffu;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene.scene(), &context.context, &rh);
+            if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+              best[size_t(way)] = std::min(best[size_t(way)], Least{double(rh.ray.tfar), v});
+          }
         }
         return best;
       },
-      [](const Thinnest& a, const Thinnest& b) { return std::min(a, b); });
-  report.min_thickness = thinnest.first;
-  report.thinnest_vertex = std::isfinite(thinnest.first) ? thinnest.second : -1;
+      [](const Both& a, const Both& b) { return Both{std::min(a[0], b[0]), std::min(a[1], b[1])}; });
+  report.min_thickness = least[0].first;
+  report.thinnest_vertex = std::isfinite(least[0].first) ? least[0].second : -1;
+  if (!gaps) return;
+  report.gaps_checked = true;
+  report.min_gap = least[1].first;
+  report.narrowest_vertex = std::isfinite(least[1].first) ? least[1].second : -1;
 }
 
 } // namespace
@@ -536,8 +545,12 @@ bool PrintabilityReport::too_thin() const {
   return required_thickness > 0 && !(thickness_checked && min_thickness >= required_thickness);
 }
 
+bool PrintabilityReport::too_close() const {
+  return required_gap > 0 && !(gaps_checked && min_gap >= required_gap);
+}
+
 bool PrintabilityReport::printable() const {
-  return watertight && !self_intersecting && !too_thin() &&
+  return watertight && !self_intersecting && !too_thin() && !too_close() &&
          std::all_of(components.begin(), components.end(), [](const SolidComponent& k) { return k.volume > 0; });
 }
 
@@ -555,6 +568,8 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
                      ": expected a finite number, 0 or more");
   PrintabilityReport report;
   report.required_thickness = options.required_thickness;
+  report.required_gap = options.required_gap;
+  report.nozzle = options.nozzle;
   report.vertices = mesh.num_vertices();
   report.faces = mesh.num_faces();
   report.boundary_edges = topology.boundary_edges;
@@ -587,7 +602,12 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     std::vector<int8_t> inward(size_t(mesh.num_faces()), 0);
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       if (const int32_t k = topology.face_components[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
-    min_thickness(mesh, tris, inward, report);
+    min_thickness(mesh, tris, inward, options.nozzle > 0, report);
+    if (options.nozzle > 0 && !report.bounding_box.empty()) {
+      // Scaling the whole mesh scales both; the larger of the two factors does.
+      const double factor = std::max(2 * options.nozzle / report.min_thickness, options.nozzle / report.min_gap);
+      report.smallest_size = factor * report.bounding_box.largest_side();
+    }
   }
   return report;
 }
@@ -652,6 +672,14 @@ std::string printability_json(const PrintabilityReport& r) {
   j["thinnest_vertex"] = r.thinnest_vertex >= 0 ? Json(r.thinnest_vertex) : Json(nullptr);
   j["required_thickness"] = r.required_thickness > 0 ? Json(r.required_thickness) : Json(nullptr);
   j["too_thin"] = r.required_thickness > 0 ? Json(r.too_thin()) : Json(nullptr);
+  if (r.gaps_checked) {
+    j["min_gap"] = finite_or_null(r.min_gap);
+    j["narrowest_vertex"] = r.narrowest_vertex >= 0 ? Json(r.narrowest_vertex) : Json(nullptr);
+    j["required_gap"] = r.required_gap > 0 ? Json(r.required_gap) : Json(nullptr);
+    j["too_close"] = r.required_gap > 0 ? Json(r.too_close()) : Json(nullptr);
+    j["nozzle"] = r.nozzle;
+    j["smallest_printable_size"] = finite_or_null(r.smallest_size);
+  }
   j["bounding_box"] = r.bounding_box.empty() ? Json(nullptr)
                                              : Json{{"min", point(r.bounding_box.min)}, {"max", point(r.bounding_box.max)}};
   Json components = Json::array();
@@ -723,6 +751,22 @@ std::string printability_summary(const PrintabilityReport& r) {
     else
       std::snprintf(text, sizeof text, ", at least the %.4g required", r.required_thickness);
     s += text;
+  }
+  if (r.gaps_checked) {
+    if (std::isfinite(r.min_gap)) {
+      std::snprintf(text, sizeof text, ", narrowest gap %.4g (at vertex %d)", r.min_gap, r.narrowest_vertex);
+      s += text;
+    }
+    if (r.required_gap > 0) {
+      std::snprintf(text, sizeof text, r.too_close() ? ", narrower than the %.4g required" : ", at least the %.4g required",
+                    r.required_gap);
+      s += text;
+    }
+    if (std::isfinite(r.smallest_size)) {
+      std::snprintf(text, sizeof text, ", prints with a %.4g mm nozzle from %.4g mm on its largest side", r.nozzle,
+                    round_up(r.smallest_size));
+      s += text;
+    }
   }
   if (!r.bounding_box.empty()) {
     const Box3& b = r.bounding_box;

@@ -145,7 +145,8 @@ function applySurfaceStyle() {
 }
 
 // ---- state and the API ------------------------------------------------------------------
-const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, phases: null, error: null, stats: null };
+const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, phases: null, error: null, stats: null,
+  surfaceBox: null };
 window.studio = {
   state,
   // The latency script (latency.mjs) times a preview and a full update through this.
@@ -203,6 +204,8 @@ async function loadSurface(reply) {
   $('mesh-name').textContent = `${reply.name}: ${reply.faces} faces${repairs}`;
   const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
   const { geometry } = parseView(buffer);
+  state.surfaceBox = geometry.boundingBox.clone();
+  showSpacing();
   surfaceObject = replace(surfaceObject, new THREE.Mesh(geometry, surfaceMaterial));
   resultObject = replace(resultObject, null);
   applySurfaceStyle();
@@ -240,11 +243,40 @@ async function openSurface(request) {
   }
 }
 
+// The model size's millimetres, as the server reads it (120mm, 12cm, 0.1m, 4.7in, a bare
+// number of millimetres); null when the field is empty.
+function modelSizeMillimetres() {
+  const match = $('model-size').value.trim().match(/^([0-9.eE+-]+)\s*(mm|cm|m|in)?$/);
+  if (!match) return null;
+  return Number(match[1]) * { mm: 1, cm: 10, m: 1000, in: 25.4 }[match[2] ?? 'mm'];
+}
+
+// The spacing slider is logarithmic, from 1/300 to 1/10 of the model's diagonal, in the
+// model's units or, with a model size, in millimetres (what the server reads then).
+function spacingValue() {
+  const box = state.surfaceBox;
+  if (!box || box.isEmpty()) return null;
+  const size = box.getSize(new THREE.Vector3());
+  const millimetres = modelSizeMillimetres();
+  const scale = millimetres ? millimetres / Math.max(size.x, size.y, size.z) : 1;
+  const t = Number($('spacing').value) / 100;
+  return size.length() * scale * 10 ** (Math.log10(1 / 300) + t * (Math.log10(1 / 10) - Math.log10(1 / 300)));
+}
+function showSpacing() {
+  const value = spacingValue();
+  $('spacing-value').textContent = value === null ? '' : `${value.toPrecision(3)}${modelSizeMillimetres() ? ' mm' : ''}`;
+}
+
 function params() {
   const mode = $('mode').value;
+  const sized = modelSizeMillimetres() !== null;
   return {
     session: state.session,
     mode,
+    model_size: sized ? $('model-size').value.trim() : 'none',
+    spacing: $('spacing-on').checked && spacingValue() !== null ? spacingValue() : 'none',
+    branches: $('branches-on').checked ? Number($('branches').value) : 'none',
+    nozzle: Number($('nozzle').value),
     quad: $('quad').value,
     tree: $('tree').value,
     seed: Number($('seed').value),
@@ -350,6 +382,10 @@ function showStats(stats) {
     if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${stats.needle_collapses.toLocaleString()} short edges (needles and folded triangles fold the slabs)`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
+  if (stats.gap_median !== undefined) {
+    rows.push(['median gap', `${stats.gap_median.toPrecision(3)} (CV ${stats.gap_cv.toFixed(2)})`]);
+  }
+  if (stats.leaves !== undefined) rows.push(['branch tips', stats.leaves.toLocaleString()]);
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
   $('stats').innerHTML = rows.map(([k, v]) => `<tr><th>${k}</th><td>${v}</td></tr>`).join('');
 }
@@ -394,8 +430,9 @@ for (const output of document.querySelectorAll('output[for]')) {
   input.addEventListener('input', show);
   show();
 }
-for (const id of ['mode', 'quad', 'tree', 'seed', 'smooth', 'samples', 'radius', 'radius-auto', 'sides', 's', 't', 'thickness',
-  'levels', 'rule', 'color0', 'color1', 'tiles', 'texture-size', 'subdivide']) {
+for (const id of ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
+  'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
+  'texture-size', 'subdivide']) {
   $(id).addEventListener('input', changed);
   if ($(id).type === 'range') $(id).addEventListener('change', changed);
 }
@@ -414,6 +451,9 @@ $('mode').addEventListener('input', () => {
   showModeControls();
 });
 $('radius-auto').addEventListener('input', () => { $('radius').disabled = $('radius-auto').checked; });
+$('spacing-on').addEventListener('input', () => { $('spacing').disabled = !$('spacing-on').checked; });
+$('branches-on').addEventListener('input', () => { $('branches').disabled = !$('branches-on').checked; });
+for (const id of ['spacing', 'model-size']) $(id).addEventListener('input', showSpacing);
 $('new-seed').addEventListener('click', () => {
   $('seed').value = Math.floor(Math.random() * 2 ** 31);
   changed();
