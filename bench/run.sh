@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `make bench`: per-stage times and peak memory of the pipeline, Meander side by side with
-# OpenMesh and tinyobjloader, the end-to-end CLI run on a 10M-triangle binary PLY, the mesh
-# writers, wires and duotones, and this machine's floors, printed as markdown ready for
-# docs/benchmarks.md. Builds nothing (`make bench` builds first); generated meshes go to
-# $BUILD/bench/meshes.
+# OpenMesh and tinyobjloader, the end-to-end CLI run on a 10M-triangle binary PLY, curves
+# of a chosen spacing, the mesh writers, wires and duotones, and this machine's floors,
+# printed as markdown ready for docs/benchmarks.md. Builds nothing (`make bench` builds
+# first); generated meshes go to $BUILD/bench/meshes.
 #
 # Environment: BUILD (build folder, default build), RUNS (runs per stage timing, default 5),
 # CLI_RUNS (end-to-end runs, default 3), MEANDER_SHARED_MESHES (default ../shared/meshes).
@@ -131,6 +131,34 @@ if [ "$peak_kb" -gt 0 ]; then
 else
   echo "| peak memory <= 150 bytes per input triangle (CLI, 10M) | GNU time not installed | - |"
 fi
+
+# --spacing (docs/density.md): the curve at 1/50 of the bunny's diagonal and at 1/200 of a
+# 1M-triangle sphere's, end to end (remesh, cycle, relaxation, write).
+# Runs `meander curve MESH -o $curve --spacing (diagonal / FRACTION)` $cli_runs times: the
+# median wall clock in `seconds`.
+time_spacing() {
+  local spacing
+  spacing=$("$meander" info "$1" --json | python3 -c \
+    "import json, math, sys; b = json.load(sys.stdin)['bounding_box']; print(math.dist(b['min'], b['max']) / $2)")
+  rm -f "$scratch/cli_seconds"
+  for ((i = 0; i < cli_runs; ++i)); do
+    start=$(date +%s.%N)
+    "$meander" curve "$1" -o "$curve" --spacing "$spacing"
+    end=$(date +%s.%N)
+    awk -v s="$start" -v e="$end" 'BEGIN { print e - s }' >> "$scratch/cli_seconds"
+  done
+  seconds=$(median < "$scratch/cli_seconds")
+  rm -f "$curve" "$scratch/cli_seconds"
+}
+echo
+echo "## Spacing: \`meander curve IN -o curve.ply --spacing D\` (median of $cli_runs)"
+echo
+echo "| target | measured | met |"
+echo "|---|---:|---|"
+time_spacing "$shared/bunny_closed.off" 50
+printf '| bunny_closed.off at 1/50 of its diagonal <= 0.2 s | %.2f s | %s |\n' "$seconds" "$(verdict "$seconds" 0.2)"
+time_spacing "$scratch/sphere_1m.ply" 200
+printf '| 1M-triangle sphere at 1/200 of its diagonal <= 2 s | %.2f s | %s |\n' "$seconds" "$(verdict "$seconds" 2)"
 
 # Google Benchmark's console table (medians), without the context lines it prints first.
 gbench_table() { echo '```'; "$@" | sed -n '/^---/,$p'; echo '```'; }

@@ -152,10 +152,19 @@ TEST(CliSpacing, BadValuesExitWithTwoAndWriteNothing) {
   EXPECT_EQ(large.exit_code, 2) << large.err;
   EXPECT_NE(large.err.find("not smaller than the model"), std::string::npos) << large.err;
   const CommandResult fine =
-      run_cli({"curve", in.string(), "-o", out.string(), "--spacing", "0.0001", "--max-faces", "100000"});
+      run_cli({"curve", in.string(), "-o", out.string(), "--spacing", "0.003", "--max-faces", "100000"});
   EXPECT_NE(fine.exit_code, 0);
   EXPECT_NE(fine.err.find("faces, over the limit of 100000"), std::string::npos) << fine.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // Without a face limit, a remeshed surface that would not fit in any machine's memory
+  // (4e15 faces) is refused before any work, in every command.
+  for (const char* command : {"curve", "wire", "duotone"}) {
+    const std::string to = (dir / (command == std::string("duotone") ? "x.glb" : "x.obj")).string();
+    const CommandResult huge = run_cli({command, in.string(), "-o", to, "--spacing", "0.00000001"});
+    EXPECT_EQ(huge.exit_code, 2) << command << ": " << huge.err;
+    EXPECT_NE(huge.err.find("the surface remeshed to --spacing 1e-08 would have about"), std::string::npos) << huge.err;
+    EXPECT_FALSE(std::filesystem::exists(to));
+  }
 }
 
 TEST(CliSpacing, WireAndDuotoneTakeItToo) {

@@ -80,6 +80,21 @@ std::string leaves_note(const TriangleCycle& cycle) {
   return "tree: " + std::to_string(cycle.leaves) + " leaves (the tips of the curve's branches; --branches sets how many)";
 }
 
+void require_memory_for_spacing(const std::string& input, const PolygonMesh& mesh, std::optional<double> model_size,
+                                std::optional<double> spacing, Quadrangulation quadrangulation) {
+  // Remeshing, relaxing and making the curve took 760 to 1150 bytes per remeshed face at
+  // their peak (the kitten at 1/530 and 1/270 of its diagonal, GNU time's maximum RSS).
+  constexpr double kBytesPerRemeshedFace = 1200;
+  const int64_t faces = remeshed_faces(mesh, model_size, spacing, quadrangulation);
+  require_memory(
+      input, double(faces), kBytesPerRemeshedFace,
+      [&] {
+        return "the surface remeshed to --spacing " + parameter_text(parameters::spacing, spacing) + " would have about " +
+               std::to_string(faces) + " faces";
+      },
+      [](double) -> std::string { return "choose a larger --spacing"; });
+}
+
 bool reorders(const CurveJob& job) { return job.quadrangulation != Quadrangulation::none; }
 
 void StageLog::lap(std::string_view stage) {

@@ -37,6 +37,11 @@ void add_max_faces(CLI::App& app, int64_t& max_faces);
 // What -v says of the cycle's tree (made with CycleOptions::count_leaves).
 std::string leaves_note(const TriangleCycle& cycle);
 
+// Refuses (UsageError, before any work) a --spacing whose remeshed surface would not fit in
+// memory, naming its faces.
+void require_memory_for_spacing(const std::string& input, const PolygonMesh& mesh, std::optional<double> model_size,
+                                std::optional<double> spacing, Quadrangulation quadrangulation);
+
 bool reorders(const CurveJob& job);
 
 // Refuses (UsageError, naming `input`), before it is made, a result of this many

@@ -37,6 +37,7 @@ void run_curve(const CurveArgs& a) {
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces, .reorder = reorders(job)});
+  require_memory_for_spacing(a.input, input.mesh, job.model_size, job.spacing, job.quadrangulation);
   StageTimes times;
   const CurveResult result =
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });

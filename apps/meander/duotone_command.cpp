@@ -52,6 +52,7 @@ void run_duotone(const DuotoneArgs& a) {
 
   StageLog log(a.verbose);
   const RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces});
+  require_memory_for_spacing(a.input, input.mesh, job.model_size, job.spacing, job.duotone.quadrangulation);
   log.restart();
   const Duotone duotone = about_input(a.input, [&] { return make_duotone(input.mesh, input.connectivity, job); });
   for (const std::string& note : duotone.notes) std::fprintf(stderr, "%s: note: %s\n", a.input.c_str(), note.c_str());

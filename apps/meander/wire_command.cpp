@@ -64,6 +64,7 @@ void run_wire(const WireArgs& a) {
 
   StageLog log(a.verbose);
   RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces, .reorder = reorders(curve_job)});
+  require_memory_for_spacing(a.input, input.mesh, curve_job.model_size, curve_job.spacing, curve_job.quadrangulation);
   StageTimes times;
   const CurveResult curve =
       about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), curve_job, &times); });

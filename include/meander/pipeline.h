@@ -81,6 +81,12 @@ PolygonMesh scaled_to_size(PolygonMesh mesh, double size);
 // median distance), as measured for each quadrangulation (docs/density.md).
 double spacing_edge_length(double spacing, Quadrangulation quadrangulation);
 
+// About how many faces the surface remeshed to `spacing` has (remeshed_faces_estimate),
+// the mesh first scaled to `model_size` if set: what a caller weighs against its memory
+// before any work. 0 without a spacing.
+int64_t remeshed_faces(const PolygonMesh& mesh, std::optional<double> model_size, std::optional<double> spacing,
+                       Quadrangulation quadrangulation);
+
 // The even remesh (remesh.h) of a mesh that repair() accepted, on which a curve made
 // with this quadrangulation has passes `spacing` apart; `input`, if given, is
 // ClosestPoints(mesh), built otherwise. Throws ParameterError for quad none (a remeshed

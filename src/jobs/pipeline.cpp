@@ -46,6 +46,16 @@ double spacing_edge_length(double spacing, Quadrangulation) {
   return spacing / gap_per_edge;
 }
 
+int64_t remeshed_faces(const PolygonMesh& mesh, std::optional<double> model_size, std::optional<double> spacing,
+                       Quadrangulation quadrangulation) {
+  if (!spacing) return 0;
+  // Scaling the mesh by k scales its area by k^2: the spacing in the mesh's units is the
+  // spacing over k.
+  const double side = bounding_box(mesh.positions).largest_side();
+  const double k = model_size && side > 0 ? *model_size / side : 1;
+  return remeshed_faces_estimate(mesh, spacing_edge_length(*spacing / k, quadrangulation));
+}
+
 PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation, int64_t max_faces,
                               const ClosestPoints* input) {
   if (quadrangulation == Quadrangulation::none)

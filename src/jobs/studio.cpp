@@ -254,7 +254,8 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
     // The remeshed surface's triangles, from its area (remeshed_faces_estimate), bounded
     // so that the products below cannot overflow.
     const Quadrangulation q = duotone ? params.duotone.duotone.quadrangulation : params.wire.curve.quadrangulation;
-    faces = std::min<int64_t>(remeshed_faces_estimate(mesh, spacing_edge_length(*spacing, q)), int64_t(1) << 40);
+    const std::optional<double> size = duotone ? params.duotone.model_size : params.wire.curve.model_size;
+    faces = std::min<int64_t>(remeshed_faces(mesh, size, spacing, q), int64_t(1) << 40);
     corners = 3 * faces;
     edges = corners / 2 + 1;
   }
