@@ -606,7 +606,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     if (options.nozzle > 0 && !report.bounding_box.empty()) {
       // Scaling the whole mesh scales both; the larger of the two factors does.
       const double factor = std::max(2 * options.nozzle / report.min_thickness, options.nozzle / report.min_gap);
-      report.smallest_size = factor * report.bounding_box.largest_side();
+      if (factor > 0) report.smallest_size = factor * report.bounding_box.largest_side(); // 0: no ray hit anything
     }
   }
   return report;
