@@ -79,7 +79,7 @@ protected:
 };
 
 TEST_F(CliModelSize, AUnitWithoutAModelSizeIsRefused) {
-  for (const std::vector<std::string> options :
+  for (const std::vector<std::string>& options :
        {std::vector<std::string>{"curve", "--spacing", "3mm"}, {"wire", "--spacing", "0.1", "--radius", "0.5mm"},
         {"wire", "--method", "variable", "--thickness", "1mm"}, {"duotone", "--spacing", "2cm"}}) {
     std::vector<std::string> args = options;
@@ -119,6 +119,30 @@ TEST_F(CliModelSize, FilesAreInMillimetresAndGltfInMetres) {
   ASSERT_EQ(duotone.exit_code, 0) << duotone.err;
   EXPECT_NEAR(bounding_box(read_mesh(out("duotone.glb")).positions).largest_side(), 0.1016, 1e-4);
   EXPECT_NEAR(bounding_box(read_mesh(out("a.ply")).positions).largest_side(), 101.6, 0.5);
+}
+
+// A curve's SVG is drawn at true size in millimetres, streamed or held (--spacing).
+TEST_F(CliModelSize, SvgIsAtTrueSizeInMillimetres) {
+  auto page_width = [](const std::string& svg) {
+    const size_t at = svg.find("width=\"") + 7, end = svg.find("mm\"", at);
+    EXPECT_NE(end, std::string::npos) << svg.substr(0, 200);
+    return std::stod(svg.substr(at, end - at));
+  };
+  for (const std::vector<std::string>& options :
+       {std::vector<std::string>{"curve", mesh_, "-o", out("c.svg"), "--model-size", "100mm"},
+        {"curve", mesh_, "-o", out("c.svg"), "--model-size", "10cm", "--spacing", "3mm"},
+        {"duotone", mesh_, "-o", out("d.glb"), "--model-size", "100", "--curve", out("c.svg")}}) {
+    const test::CommandResult r = test::run_cli(options);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string svg = test::read_file(out("c.svg"));
+    // The pretzel's longest side, along x, is 100 mm; the curve lies on it, with a 2 mm margin each side.
+    EXPECT_GT(page_width(svg), 95);
+    EXPECT_LE(page_width(svg), 104.001);
+    EXPECT_NE(svg.find("stroke-width=\"0.3\""), std::string::npos);
+  }
+  const test::CommandResult plain = test::run_cli({"curve", mesh_, "-o", out("c.svg")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(test::read_file(out("c.svg")).find("mm\""), std::string::npos);
 }
 
 // The demo's printable wire: with a model size a wire is judged in millimetres against

@@ -82,7 +82,7 @@ void run_duotone(const DuotoneArgs& a) {
   log.lap("curve, regions");
 
   write_textured_mesh(surface, a.output, job.model_size.has_value());
-  if (!a.curve.empty()) write_polylines(curves, a.curve);
+  if (!a.curve.empty()) write_polylines(curves, a.curve, {.millimetres = job.model_size.has_value()});
   for (int k = 0; k < 2 && !a.regions.empty(); ++k) write_mesh(pieces[size_t(k)], regions[size_t(k)]);
   log.lap("write");
   std::string picture_written;

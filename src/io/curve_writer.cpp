@@ -43,6 +43,7 @@ struct CycleCurveWriter::File {
   const QuadMesh& quads;
   std::filesystem::path path;
   CurveOptions options;
+  PolylineWriteOptions write;
   int k = 1;
   int32_t points = 0;
   // A PLY's layout, written by `thread` as if the points made one closed curve: where the
@@ -134,8 +135,9 @@ void CycleCurveWriter::File::stream_points() {
   }
 }
 
-CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path)
-    : file_(new File{.quads = quads, .path = path, .options = options}) {
+CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path,
+                                   const PolylineWriteOptions& write)
+    : file_(new File{.quads = quads, .path = path, .options = options, .write = write}) {
   int64_t triangles = 0;
   for (int32_t q = 0; q < quads.num_quads(); ++q) triangles += quads.is_half(q) ? 1 : 2;
   file_->k = points_per_segment(triangles, options);
@@ -175,7 +177,7 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
     throw Error("internal error: the cycles of " + f.path.string() + " hold " + std::to_string(cycle.num_triangles()) +
                 " triangles, not the " + std::to_string(f.points / f.k) + " laid out");
   if (!f.ply) {
-    io::write_polylines(out, f.path);
+    io::write_polylines(out, f.path, f.write);
   } else {
     if (f.pending_first >= 0) io::write_ply_points(out, *f.ply, f.points_at, f.pending_first * f.k, (f.pending_first + 1) * f.k);
     io::write_ply_points(out, *f.ply, f.points_at, f.next * f.k, f.points);
@@ -198,9 +200,9 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
 
 // The cycles are known here: the file needs no writer of its own.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
-                           const std::filesystem::path& path) {
+                           const std::filesystem::path& path, const PolylineWriteOptions& write) {
   const io::PolylineStream out = cycle_stream(quads, cycle, options);
-  io::write_polylines(out, path);
+  io::write_polylines(out, path, write);
   return out.start.back();
 }
 

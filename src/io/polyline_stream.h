@@ -4,6 +4,7 @@
 #pragma once
 
 #include "io/sink.h"
+#include "meander/io.h"
 #include "meander/mesh.h"
 
 #include <cstdint>
@@ -29,7 +30,8 @@ struct PolylineStream {
 // for byte (write_polylines is this with the points copied out of the Polylines); no more
 // than a few blocks of points exist at once. An SVG asks for every point twice, its page
 // being fitted to their bounding box first.
-void write_polylines(const PolylineStream& curves, const std::filesystem::path& path);
+void write_polylines(const PolylineStream& curves, const std::filesystem::path& path,
+                     const PolylineWriteOptions& options = {});
 
 // write_polylines' PLY in two steps, for a writer that knows the polylines' sizes before
 // their points: write_ply_layout writes the header and the edges, which depend on

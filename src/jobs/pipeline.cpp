@@ -130,7 +130,8 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
   const bool sample = job.sample || job.spacing;
   std::optional<CycleCurveWriter> writer;
-  if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
+  const PolylineWriteOptions write{.millimetres = job.model_size.has_value()};
+  if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output, write);
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
   watch.lap("cycle");
   if (writer) {
@@ -153,7 +154,7 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
       watch.lap(job.relax > 0 ? "relax" : "project");
     }
     if (!job.output.empty()) {
-      write_polylines(result.curves, job.output);
+      write_polylines(result.curves, job.output, write);
       result.points_written = int64_t(result.curves.points.size());
       watch.lap("write curve");
     }

@@ -576,7 +576,9 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     std::sort(files.begin(), files.end(), [](const NamedFile& a, const NamedFile& b) { return a.name < b.name; });
     return {zip_archive(files), "application/zip", base + ".zip"};
   }
-  case StudioFile::svg: return {polylines_file_bytes(result.curve.curves, base + ".svg"), "image/svg+xml", base + ".svg"};
+  case StudioFile::svg:
+    return {polylines_file_bytes(result.curve.curves, base + ".svg", {.millimetres = millimetres}), "image/svg+xml",
+            base + ".svg"};
   case StudioFile::png: {
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
