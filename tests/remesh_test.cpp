@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <vector>
 
 namespace meander {
@@ -142,6 +144,56 @@ TEST(ClosestPoints, MovesPointsToTheClosestPoint) {
   EXPECT_NEAR(points[2].x, 1, 1e-6); // beyond the edge: onto the edge
   EXPECT_NEAR(points[3].x, 0, 1e-6);
   EXPECT_NEAR(points[3].y, 0, 1e-6);
+}
+
+// The distance from p to the nearest point of triangle t by brute force: its plane if the
+// foot lies inside, else the nearest of its edges.
+double distance_to_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+  auto segment = [&](Vec3d u, Vec3d v) {
+    const double t = std::clamp(dot(p - u, v - u) / dot(v - u, v - u), 0.0, 1.0);
+    return norm(p - (u + (v - u) * t));
+  };
+  const Vec3d n = cross(b - a, c - a);
+  const Vec3d foot = p - n * (dot(p - a, n) / dot(n, n));
+  const bool inside = dot(cross(b - a, foot - a), n) >= 0 && dot(cross(c - b, foot - b), n) >= 0 &&
+                      dot(cross(a - c, foot - c), n) >= 0;
+  return inside ? norm(p - foot) : std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+// Embree's tree answers what a search of every triangle answers, with a hint or without,
+// and of triangles equally near the lowest numbered.
+TEST(ClosestPoints, FindsWhatEveryTriangleSearchedFinds) {
+  const PolygonMesh mesh = torus(800);
+  const ClosestPoints surface(mesh);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  for (int k = 0; k < 300; ++k) {
+    const Vec3d p{coordinate(random), coordinate(random), coordinate(random) / 2};
+    double best = INFINITY;
+    for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+      const std::span<const int32_t> t = mesh.face(f);
+      best = std::min(best, distance_to_triangle(p, to_double(mesh.positions[size_t(t[0])]),
+                                                 to_double(mesh.positions[size_t(t[1])]),
+                                                 to_double(mesh.positions[size_t(t[2])])));
+    }
+    const ClosestPoints::Hit hit = surface.closest_hit(p);
+    EXPECT_NEAR(norm(hit.point - p), best, 1e-9) << k;
+    const std::span<const int32_t> t = mesh.face(hit.triangle);
+    const Vec3d a = to_double(mesh.positions[size_t(t[0])]), n = cross(to_double(mesh.positions[size_t(t[1])]) - a,
+                                                                          to_double(mesh.positions[size_t(t[2])]) - a);
+    EXPECT_NEAR(dot(hit.normal, n) / norm(n), 1, 1e-9);
+    const ClosestPoints::Hit hinted = surface.closest_hit(p, surface.closest_hit(p + Vec3d{0.1, 0, 0}));
+    EXPECT_EQ(hinted.point, hit.point);
+    EXPECT_EQ(hinted.triangle, hit.triangle);
+  }
+  // Above a vertex of the square, every triangle around it is as near: the lowest wins.
+  const PolygonMesh square = grid(200);
+  const Vec3 corner = square.positions[size_t(square.face(57)[0])];
+  int32_t lowest = square.num_faces();
+  for (int32_t f = 0; f < square.num_faces(); ++f)
+    for (int32_t v : square.face(f))
+      if (square.positions[size_t(v)] == corner) lowest = std::min(lowest, f);
+  EXPECT_EQ(ClosestPoints(square).closest_hit(to_double(corner) + Vec3d{0, 0, 1}).triangle, lowest);
 }
 
 } // namespace

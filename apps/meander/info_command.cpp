@@ -41,7 +41,11 @@ nlohmann::ordered_json evenness_json(const CurveEvenness& e) {
       {"points", r.points},
       {"unpaired_points", r.unpaired},
       {"gap", {{"median", r.gap_median}, {"mean", r.gap_mean}, {"cv", r.gap_cv}, {"p5", r.gap_p5}, {"p95", r.gap_p95}}},
-      {"coverage", {{"samples", r.surface_samples}, {"p99", r.coverage_p99}, {"max", r.coverage_max}}}};
+      {"coverage",
+       {{"samples", r.surface_samples},
+        {"p99", r.coverage_p99},
+        {"max", r.coverage_max},
+        {"farthest", {r.farthest.x, r.farthest.y, r.farthest.z}}}}};
 }
 
 // Relative to the median gap, the scale at which evenness is judged.
@@ -53,8 +57,8 @@ void print_evenness(const CurveEvenness& e) {
   std::printf("gap                    median %g (%.2fx the spacing estimate), CV %.2f, p5 %.2fx, p95 %.2fx median\n", g,
               g / r.spacing_estimate, r.gap_cv, r.gap_p5 / g, r.gap_p95 / g);
   if (r.unpaired > 0) std::printf("                       %d points without another pass left out\n", r.unpaired);
-  std::printf("coverage               max %.2fx, p99 %.2fx median gap (%d surface points)\n", r.coverage_max / g,
-              r.coverage_p99 / g, r.surface_samples);
+  std::printf("coverage               max %.2fx, p99 %.2fx median gap (%d surface points); farthest at (%g, %g, %g)\n",
+              r.coverage_max / g, r.coverage_p99 / g, r.surface_samples, r.farthest.x, r.farthest.y, r.farthest.z);
 }
 
 std::string genus_text(const ComponentReport& c) {

@@ -9,7 +9,7 @@
 
 namespace meander {
 
-// An AABB tree (CGAL) of a surface's faces, each polygon fanned from its first vertex
+// A bounding volume hierarchy (Embree) of a surface's faces, each polygon fanned from its first vertex
 // as the writers triangulate it; built once, then queried from any thread.
 class ClosestPoints {
 public:

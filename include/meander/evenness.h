@@ -35,6 +35,7 @@ struct EvennessReport {
   // Coverage: the distance from each surface sample to the nearest resampled point.
   int32_t surface_samples = 0;
   double coverage_p99 = 0, coverage_max = 0;
+  Vec3 farthest{}; // the sample at coverage_max (the first such): where the surface is least covered
   friend bool operator==(const EvennessReport&, const EvennessReport&) = default;
 };
 

@@ -396,7 +396,9 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
   if (uncovered)
     throw InputError("the curves do not cover the surface: part of it lies farther than " + number(kReach) +
                      " spacing estimates (" + number(reach) + ") from them");
-  report.coverage_max = *std::max_element(coverage.begin(), coverage.end());
+  const auto farthest = std::max_element(coverage.begin(), coverage.end());
+  report.coverage_max = *farthest;
+  report.farthest = samples[size_t(farthest - coverage.begin())];
   report.coverage_p99 = percentile(coverage, 0.99);
   return report;
 }

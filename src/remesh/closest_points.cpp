@@ -1,93 +1,150 @@
 #include "meander/closest_points.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "embree/embree_scene.h"
 
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <vector>
 
 namespace meander {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangle = Kernel::Triangle_3;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
+// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5):
+// by the Voronoi region of the triangle's vertices, edges or inside that p lies in.
+Vec3d closest_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3d bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3d cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = va + vb + vc;
+  // A degenerate triangle (all three zero) is met by the edge tests above unless p is on it.
+  if (!(denominator > 0)) return a;
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+struct Triangles {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int32_t, 3>> corners;
+
+  std::array<Vec3d, 3> at(int32_t t) const {
+    const std::array<int32_t, 3>& v = corners[size_t(t)];
+    return {to_double(positions[size_t(v[0])]), to_double(positions[size_t(v[1])]), to_double(positions[size_t(v[2])])};
+  }
+};
+
+// One query's best triangle so far. Of triangles equally near, the lowest numbered wins,
+// so that the answer does not depend on the order the tree visits them.
+struct Query {
+  const Triangles* triangles;
+  Vec3d p;
+  Vec3d best{};
+  double best_squared = std::numeric_limits<double>::infinity();
+  int32_t triangle = -1;
+
+  bool offer(int32_t t) {
+    const auto [a, b, c] = triangles->at(t);
+    const Vec3d q = closest_on_triangle(p, a, b, c);
+    const double d = dot(q - p, q - p);
+    if (d > best_squared || (d == best_squared && t > triangle)) return false;
+    best = q;
+    best_squared = d;
+    triangle = t;
+    return true;
+  }
+  // The query's radius: no less than the best distance, so that ties are still visited.
+  float radius() const { return std::nextafter(float(std::sqrt(best_squared)), std::numeric_limits<float>::infinity()); }
+};
+
+bool visit(RTCPointQueryFunctionArguments* args) {
+  Query& q = *static_cast<Query*>(args->userPtr);
+  if (!q.offer(int32_t(args->primID))) return false;
+  args->query->radius = q.radius();
+  return true;
+}
 
 } // namespace
 
 struct ClosestPoints::Tree {
-  std::vector<Triangle> triangles;
-  CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>> tree;
+  Triangles triangles;
+  std::optional<EmbreeScene> scene;
 };
 
 ClosestPoints::ClosestPoints(const PolygonMesh& surface) : tree_(std::make_unique<Tree>()) {
-  auto point = [&surface](int32_t v) {
-    const Vec3 p = surface.positions[size_t(v)];
-    return Kernel::Point_3(p.x, p.y, p.z);
-  };
+  Tree& t = *tree_;
+  t.triangles.positions = surface.positions;
+  std::vector<std::array<int32_t, 3>>& corners = t.triangles.corners;
+  corners.reserve(size_t(surface.num_corners() - 2 * surface.num_faces()));
   for (int32_t f = 0; f < surface.num_faces(); ++f) {
     const std::span<const int32_t> face = surface.face(f);
-    for (size_t i = 1; i + 1 < face.size(); ++i)
-      tree_->triangles.emplace_back(point(face[0]), point(face[i]), point(face[i + 1]));
+    for (size_t i = 1; i + 1 < face.size(); ++i) corners.push_back({face[0], face[i], face[i + 1]});
   }
-  if (tree_->triangles.empty()) return;
-  tree_->tree.insert(tree_->triangles.begin(), tree_->triangles.end());
-  // Built here, before threads query it: the tree builds lazily otherwise.
-  tree_->tree.build();
-  tree_->tree.accelerate_distance_queries();
+  if (corners.empty()) return;
+  t.scene.emplace("closest points", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry geometry = rtcNewGeometry(t.scene->device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), surface.positions.size()));
+  for (size_t v = 0; v < surface.positions.size(); ++v) {
+    vertices[3 * v] = surface.positions[v].x;
+    vertices[3 * v + 1] = surface.positions[v].y;
+    vertices[3 * v + 2] = surface.positions[v].z;
+  }
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, corners.data(), 0,
+                             sizeof(std::array<int32_t, 3>), corners.size());
+  t.scene->attach(geometry);
+  t.scene->commit();
 }
 
 ClosestPoints::~ClosestPoints() = default;
 ClosestPoints::ClosestPoints(ClosestPoints&&) noexcept = default;
 ClosestPoints& ClosestPoints::operator=(ClosestPoints&&) noexcept = default;
 
-Vec3d ClosestPoints::closest(Vec3d p) const {
-  if (tree_->triangles.empty()) return p;
-  const Kernel::Point_3 q = tree_->tree.closest_point(Kernel::Point_3(p.x, p.y, p.z));
-  return {q.x(), q.y(), q.z()};
-}
+Vec3d ClosestPoints::closest(Vec3d p) const { return closest_hit(p).point; }
 
-namespace {
-
-ClosestPoints::Hit hit(const std::pair<Kernel::Point_3, std::vector<Triangle>::const_iterator>& found,
-                       const std::vector<Triangle>& triangles) {
-  const auto& [q, triangle] = found;
-  const Kernel::Vector_3 n = CGAL::normal(triangle->vertex(0), triangle->vertex(1), triangle->vertex(2));
-  const double length = std::sqrt(n.squared_length());
-  const Vec3d normal = length > 0 ? Vec3d{n.x() / length, n.y() / length, n.z() / length} : Vec3d{};
-  return {{q.x(), q.y(), q.z()}, normal, int32_t(triangle - triangles.begin())};
-}
-
-} // namespace
-
-ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p) const {
-  if (tree_->triangles.empty()) return {p, {}};
-  return hit(tree_->tree.closest_point_and_primitive(Kernel::Point_3(p.x, p.y, p.z)), tree_->triangles);
-}
+ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p) const { return closest_hit(p, Hit{}); }
 
 ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint) const {
-  if (hint.triangle < 0 || size_t(hint.triangle) >= tree_->triangles.size()) return closest_hit(p);
-  const Kernel::Point_3 near(hint.point.x, hint.point.y, hint.point.z);
-  return hit(tree_->tree.closest_point_and_primitive(Kernel::Point_3(p.x, p.y, p.z),
-                                                     {near, tree_->triangles.cbegin() + hint.triangle}),
-             tree_->triangles);
+  if (!tree_->scene) return {p, {}};
+  Query q{.triangles = &tree_->triangles, .p = p};
+  if (hint.triangle >= 0 && size_t(hint.triangle) < tree_->triangles.corners.size()) q.offer(hint.triangle);
+  RTCPointQuery query;
+  query.x = float(p.x);
+  query.y = float(p.y);
+  query.z = float(p.z);
+  query.radius = q.radius();
+  query.time = 0;
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(tree_->scene->scene(), &query, &context, visit, &q);
+  // Only a surface of degenerate triangles, which Embree leaves out, has none.
+  if (q.triangle < 0) return {p, {}};
+  const auto [a, b, c] = tree_->triangles.at(q.triangle);
+  const Vec3d n = cross(b - a, c - a);
+  const double length = norm(n);
+  return {q.best, length > 0 ? n * (1 / length) : Vec3d{}, q.triangle};
 }
 
 void ClosestPoints::project(std::span<Vec3> points, std::span<Vec3> normals) const {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
-      if (normals.empty()) {
-        points[i] = to_float(closest(to_double(points[i])));
-        continue;
-      }
       const Hit hit = closest_hit(to_double(points[i]));
       points[i] = to_float(hit.point);
-      normals[i] = to_float(hit.normal);
+      if (!normals.empty()) normals[i] = to_float(hit.normal);
     }
   });
 }

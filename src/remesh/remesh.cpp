@@ -173,17 +173,19 @@ CutMesh cut_open(const PolygonMesh& mesh, double longest) {
   return cut;
 }
 
-// The topology remeshing must keep: per component, sorted.
-std::vector<std::tuple<int64_t, int32_t, bool>> topology(const PolygonMesh& mesh) {
+// The topology remeshing must keep: per component (Euler characteristic, boundary loops,
+// orientable), sorted.
+using Topology = std::vector<std::tuple<int64_t, int32_t, bool>>;
+Topology topology(const PolygonMesh& mesh) {
   const MeshReport report = inspect(mesh);
-  std::vector<std::tuple<int64_t, int32_t, bool>> components;
+  Topology components;
   for (const ComponentReport& c : report.components)
     components.emplace_back(c.euler_characteristic, c.boundary_loops, c.orientable);
   std::sort(components.begin(), components.end());
   return components;
 }
 
-std::string describe(const std::vector<std::tuple<int64_t, int32_t, bool>>& components) {
+std::string describe(const Topology& components) {
   std::string text = std::to_string(components.size()) + " component" + (components.size() == 1 ? "" : "s");
   int64_t euler = 0, loops = 0;
   for (const auto& [chi, b, orientable] : components) euler += chi, loops += b;
@@ -195,7 +197,7 @@ std::string describe(const std::vector<std::tuple<int64_t, int32_t, bool>>& comp
 // (meshoptimizer, its boundary kept), so that CGAL's remeshing, which the projection onto
 // the input keeps on the surface, starts from fewer; the mesh itself where it has
 // polygons, is no larger, or would change topology.
-PolygonMesh coarsened(const PolygonMesh& mesh, int64_t faces) {
+PolygonMesh coarsened(const PolygonMesh& mesh, const Topology& mesh_topology, int64_t faces) {
   if (int64_t(mesh.num_faces()) <= faces || mesh.face_vertices.size() != 3 * size_t(mesh.num_faces())) return mesh;
   const std::vector<uint32_t> indices(mesh.face_vertices.begin(), mesh.face_vertices.end());
   std::vector<uint32_t> kept(indices.size());
@@ -212,7 +214,7 @@ PolygonMesh coarsened(const PolygonMesh& mesh, int64_t faces) {
     result.face_vertices.push_back(index[v]);
     if (result.face_vertices.size() % 3 == 0) result.face_start.push_back(int32_t(result.face_vertices.size()));
   }
-  return topology(result) == topology(mesh) ? result : mesh;
+  return topology(result) == mesh_topology ? result : mesh;
 }
 
 void check_edge_length(double length) {
@@ -255,7 +257,8 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
     throw InputError("the remeshed surface would have about " + std::to_string(estimate) + " faces, over the limit of " +
                      std::to_string(options.max_faces) + ": choose a larger spacing");
   // CGAL keeps protected edges no longer than 4/3 of the target.
-  const CutMesh cut = cut_open(coarsened(mesh, 8 * estimate), length * 4 / 3);
+  const Topology before = topology(mesh);
+  const CutMesh cut = cut_open(coarsened(mesh, before, 8 * estimate), length * 4 / 3);
   const PolygonMesh& open = cut.mesh;
   auto copy_of = [&cut](int32_t v) { return cut.original.empty() ? v : cut.original[size_t(v)]; };
 
@@ -315,7 +318,7 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
     }
     result.face_start.push_back(int32_t(result.face_vertices.size()));
   }
-  if (const auto before = topology(mesh), after = topology(result); before != after)
+  if (const Topology after = topology(result); before != after)
     throw TopologyError("remeshing at edge length " + std::to_string(length) + " changed the surface's topology (" +
                         describe(before) + " before, " + describe(after) +
                         " after): a part is thinner than the spacing; choose a smaller spacing");
