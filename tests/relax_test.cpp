@@ -93,6 +93,19 @@ TEST(Relax, KeepsEachCurveClosedAndOnItsComponent) {
   EXPECT_EQ(after.open, std::vector<uint8_t>{});
 }
 
+// A component much smaller than the spacing (a fin that repair cut off) keeps a curve of
+// at least 3 points: resampling at the spacing would leave too few to close.
+TEST(Relax, ACurveSmallerThanTheSpacingStaysACurve) {
+  const PolygonMesh two = test::side_by_side(sphere(2000), scaled_to_size(sphere(200), 0.002), {3, 0, 0});
+  const double spacing = 0.1;
+  const Polylines before = make_curve(two, CurveJob{}).curves;
+  ASSERT_EQ(before.size(), 2);
+  const Polylines after = relax_curves(before, two, ClosestPoints(two), {.spacing = spacing}).curves;
+  ASSERT_EQ(after.size(), 2);
+  for (int32_t k = 0; k < 2; ++k) EXPECT_GE(after.polyline(k).size(), 3u) << k;
+  EXPECT_NO_THROW(measure_evenness(two, after, {.surface_samples = 1000}));
+}
+
 TEST(Relax, TheSameWhateverTheNumberOfThreads) {
   const PolygonMesh mesh = torus(3000);
   const Polylines before = unrelaxed_curve(mesh, 0.08);

@@ -116,7 +116,8 @@ std::vector<Vec3d> boundary_points(const PolygonMesh& surface, double step) {
 
 // Each curve with points about `step` apart: a stretch longer than 1.5 steps gets points
 // between (on the surface), and a point nearer than half a step to the last one kept is
-// dropped, so the points keep their order.
+// dropped, so the points keep their order. A curve shorter than 4 steps (on a component
+// smaller than the spacing) keeps its points, which would otherwise be too few to close.
 Curves resampled(const Curves& curves, double step, const ClosestPoints& closest) {
   Curves out;
   auto fill = [&](const ClosestPoints::Hit& a, const ClosestPoints::Hit& b, double d) {
@@ -127,6 +128,14 @@ Curves resampled(const Curves& curves, double step, const ClosestPoints& closest
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[size_t(k)], end = curves.start[size_t(k) + 1];
     const size_t begin = out.points.size();
+    double length = 0;
+    for (int32_t i = first; i < end; ++i)
+      length += norm(curves.points[size_t(i + 1 == end ? first : i + 1)].point - curves.points[size_t(i)].point);
+    if (length < 4 * step) {
+      out.points.insert(out.points.end(), curves.points.begin() + first, curves.points.begin() + end);
+      out.start.push_back(int32_t(out.points.size()));
+      continue;
+    }
     for (int32_t i = first; i < end; ++i) {
       const ClosestPoints::Hit& p = curves.points[size_t(i)];
       if (out.points.size() > begin) {
