@@ -1,5 +1,6 @@
 #include "meander/relax.h"
 
+#include "core/point_grid.h"
 #include "meander/connectivity.h"
 #include "meander/error.h"
 
@@ -47,53 +48,6 @@ Vec3d normalized(Vec3d v) {
   return length > 0 ? v * (1 / length) : Vec3d{};
 }
 
-// Points hashed into cubic cells, listed by cell (order()); the cells of a point and its
-// 26 neighbours are searched, so a cell is as wide as the farthest query. The caller
-// keeps what it needs of each point in that order, which the search then reads in
-// sequence.
-class Grid {
-public:
-  Grid(std::span<const Vec3d> points, Vec3d origin, double cell) : origin_(origin), inverse_(1 / cell) {
-    std::vector<std::pair<uint64_t, int32_t>> keyed(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-      const auto c = cell_of(points[i]);
-      keyed[i] = {pack(c[0], c[1], c[2]), int32_t(i)};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    keys_.resize(keyed.size());
-    items_.resize(keyed.size());
-    for (size_t i = 0; i < keyed.size(); ++i) std::tie(keys_[i], items_[i]) = keyed[i];
-  }
-
-  template <class F> void for_each_near(Vec3d p, F&& f) const {
-    const auto c = cell_of(p);
-    for (int64_t x = c[0] - 1; x <= c[0] + 1; ++x)
-      for (int64_t y = c[1] - 1; y <= c[1] + 1; ++y) {
-        // z varies fastest in a key: the three cells along z are one run.
-        const auto first = std::lower_bound(keys_.begin(), keys_.end(), pack(x, y, c[2] - 1));
-        const auto last = std::upper_bound(first, keys_.end(), pack(x, y, c[2] + 1));
-        for (auto k = first; k != last; ++k) f(size_t(k - keys_.begin()));
-      }
-  }
-  // The points' indices, by cell.
-  std::span<const int32_t> order() const { return items_; }
-
-private:
-  static constexpr int64_t kMaxCell = (int64_t(1) << 21) - 2;
-  static uint64_t pack(int64_t x, int64_t y, int64_t z) {
-    return (uint64_t(x) << 42) | (uint64_t(y) << 21) | uint64_t(z);
-  }
-  std::array<int64_t, 3> cell_of(Vec3d p) const {
-    auto axis = [this](double v, double o) { return std::clamp(int64_t(std::floor((v - o) * inverse_)), int64_t(1), kMaxCell); };
-    return {axis(p.x, origin_.x), axis(p.y, origin_.y), axis(p.z, origin_.z)};
-  }
-
-  Vec3d origin_;
-  double inverse_;
-  std::vector<uint64_t> keys_;
-  std::vector<int32_t> items_;
-};
-
 struct Curves {
   std::vector<ClosestPoints::Hit> points; // on the surface
   std::vector<int32_t> start{0};
@@ -101,15 +55,15 @@ struct Curves {
 };
 
 // Points on the boundary edges of the surface, `step` apart or closer.
-std::vector<Vec3d> boundary_points(const PolygonMesh& surface, double step) {
+std::vector<Vec3> boundary_points(const PolygonMesh& surface, double step) {
   const Connectivity connectivity = build_connectivity(surface);
-  std::vector<Vec3d> points;
+  std::vector<Vec3> points;
   for (int32_t e = 0; e < connectivity.num_edges(); ++e) {
     if (connectivity.edge_degree(e) != 1) continue;
     const auto [a, b] = connectivity.edge_vertices[size_t(e)];
     const Vec3d pa = to_double(surface.positions[size_t(a)]), pb = to_double(surface.positions[size_t(b)]);
     const int pieces = std::max(1, int(std::ceil(norm(pb - pa) / step)));
-    for (int k = 0; k < pieces; ++k) points.push_back(pa + (pb - pa) * (double(k) / pieces));
+    for (int k = 0; k < pieces; ++k) points.push_back(to_float(pa + (pb - pa) * (double(k) / pieces)));
   }
   return points;
 }
@@ -154,15 +108,25 @@ Curves resampled(const Curves& curves, double step, const ClosestPoints& closest
   return out;
 }
 
-// One move of every point toward the middle of its neighbouring passes.
-Curves relaxed(const Curves& curves, std::span<const Vec3d> walls, Vec3d origin, double spacing,
-               const ClosestPoints& closest) {
+// The boundary of the surface, in a grid of cells `reach` wide, its points by rank.
+struct Walls {
+  PointGrid grid;
+  std::vector<Vec3d> by_rank;
+};
+
+// One move of every point toward the middle of its neighbouring passes. `box` holds the
+// surface, with a cell of margin.
+Curves relaxed(const Curves& curves, const Walls& walls, const Box3& box, double spacing, const ClosestPoints& closest) {
   const double reach = kReach * spacing;
   const double bend = kBend * spacing;
   const size_t n = curves.points.size();
   std::vector<Vec3d> at(n);
-  for (size_t i = 0; i < n; ++i) at[i] = curves.points[i].point;
-  const Grid grid(at, origin, reach), wall_grid(walls, origin, reach);
+  std::vector<Vec3> cells(n);
+  for (size_t i = 0; i < n; ++i) {
+    at[i] = curves.points[i].point;
+    cells[i] = to_float(at[i]);
+  }
+  const PointGrid grid(cells, reach, box);
   // Each point's curve, and its distance along it from the curve's first point.
   std::vector<int32_t> curve_of(n);
   std::vector<double> along(n), length(size_t(curves.size()));
@@ -181,13 +145,11 @@ Curves relaxed(const Curves& curves, std::span<const Vec3d> walls, Vec3d origin,
     double along;
     int32_t curve, index;
   };
-  std::vector<Near> by_cell(n);
+  std::vector<Near> by_rank(n);
   for (size_t rank = 0; rank < n; ++rank) {
-    const size_t i = size_t(grid.order()[rank]);
-    by_cell[rank] = {at[i], curves.points[i].normal, along[i], curve_of[i], int32_t(i)};
+    const size_t i = size_t(grid.ids()[rank]);
+    by_rank[rank] = {at[i], curves.points[i].normal, along[i], curve_of[i], int32_t(i)};
   }
-  std::vector<Vec3d> walls_by_cell(walls.size());
-  for (size_t rank = 0; rank < walls.size(); ++rank) walls_by_cell[rank] = walls[size_t(wall_grid.order()[rank])];
   // Each point's direction across the curve on the surface, the move toward the middle
   // of its neighbouring passes, and the most it may move.
   std::vector<Vec3d> across(n);
@@ -209,8 +171,8 @@ Curves relaxed(const Curves& curves, std::span<const Vec3d> walls, Vec3d origin,
         const double side = dot(q - p, across[i]);
         (side > 0 ? plus : minus) = std::min(side > 0 ? plus : minus, distance_as);
       };
-      grid.for_each_near(p, [&](size_t rank) {
-        const Near& near = by_cell[rank];
+      grid.for_each_near(cells[i], [&](size_t rank) {
+        const Near& near = by_rank[rank];
         const Vec3d q = near.point;
         const double d2 = dot(q - p, q - p);
         if (d2 >= reach * reach || size_t(near.index) == i) return;
@@ -229,8 +191,8 @@ Curves relaxed(const Curves& curves, std::span<const Vec3d> walls, Vec3d origin,
         if (dot(normal, near.normal) >= kOtherSide) pass(q, d);
       });
       // The boundary stands for a pass twice as far, so passes keep half a spacing from it.
-      wall_grid.for_each_near(p, [&](size_t rank) {
-        const Vec3d q = walls_by_cell[rank];
+      walls.grid.for_each_near(cells[i], [&](size_t rank) {
+        const Vec3d q = walls.by_rank[rank];
         const double d = norm(q - p);
         if (d >= reach) return;
         nearest = std::min(nearest, d);
@@ -278,22 +240,23 @@ RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, 
   if (options.iterations < 0) throw ParameterError("iterations", " must be at least 0");
   const double step = options.spacing / kStepsPerSpacing;
   Curves work;
-  Box3 box;
   for (int32_t k = 0; k < curves.size(); ++k) {
     if (!curves.closed(k)) throw InputError("curve " + std::to_string(k) + " is open: only closed curves are relaxed");
-    for (const Vec3 p : curves.polyline(k)) {
-      work.points.push_back(closest.closest_hit(to_double(p)));
-      box.extend(p);
-    }
+    for (const Vec3 p : curves.polyline(k)) work.points.push_back(closest.closest_hit(to_double(p)));
     work.start.push_back(int32_t(work.points.size()));
   }
-  const std::vector<Vec3d> walls = boundary_points(surface, step);
-  for (const Vec3d& w : walls) box.extend(to_float(w));
-  // Two cells of margin: the grids clamp a point outside the box to its edge cells.
-  const Vec3d origin = to_double(box.min) - Vec3d{1, 1, 1} * (2 * kReach * options.spacing);
+  // Points stay on the surface: its box, grown by a cell, holds them and the queries.
+  const double reach = kReach * options.spacing;
+  Box3 box = bounding_box(surface.positions);
+  box.extend(box.min - Vec3{1, 1, 1} * float(reach));
+  box.extend(box.max + Vec3{1, 1, 1} * float(reach));
+  const std::vector<Vec3> boundary = boundary_points(surface, step);
+  Walls walls{.grid = PointGrid(boundary, reach, box), .by_rank = std::vector<Vec3d>(boundary.size())};
+  for (size_t rank = 0; rank < boundary.size(); ++rank)
+    walls.by_rank[rank] = to_double(boundary[size_t(walls.grid.ids()[rank])]);
   work = resampled(work, step, closest);
   for (int iteration = 0; iteration < options.iterations; ++iteration)
-    work = resampled(relaxed(work, walls, origin, options.spacing, closest), step, closest);
+    work = resampled(relaxed(work, walls, box, options.spacing, closest), step, closest);
   RelaxedCurves out;
   out.curves.points.reserve(work.points.size());
   out.normals.reserve(work.points.size());
