@@ -142,17 +142,17 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SpacingOnRealMesh,
 // Issue 34's evenness targets on the real meshes, at the spacings (fractions of the
 // diagonal among 1/30, 1/60 and 1/120) where every part of the mesh is at least two
 // spacings thick: median gap within 10% of the spacing, CV at most 0.12, 5th percentile
-// at least 0.75 spacings, one curve per component. 1/120 is checked on seven meshes
-// only, for time; docs/density.md gives every mesh at every spacing. Left out where
-// measured outside the targets, as the issue allows for parts thinner than two spacings
-// (such a part meets its other side as a neighbouring pass):
+// at least 0.75 spacings, one curve per component. 1/120 is checked on six meshes only,
+// for time; docs/density.md gives every mesh at every spacing. Left out where measured
+// outside the targets, as the issue allows for parts thinner than two spacings (such a
+// part meets its other side as a neighbouring pass):
 //   at 1/30: the bunnies (ears), the three Spots (ears and horns), fertility (arms),
-//     camelhead (ears), genus3hexa1 (the bars between its holes); and, by a little (CV
-//     0.125 to 0.16), fandisk, conrod, hourglass_ico and platonic_shelf, whose components
-//     are a few spacings across, and triple_vierbein, cut by repair into narrow strips;
-//   at 1/60: camelhead, genus3hexa1, spot_control_mesh and triple_vierbein.
-// Coverage: no surface point farther than 2.5 spacings from the curve (the issue's 0.8 is
-// not reached: the ends of branches leave pockets, and thin parts' tips stay bare).
+//     camelhead (ears), genus3hexa1 (the bars between its holes), triple_vierbein (cut
+//     by repair into narrow strips), and by a little (CV 0.146) fandisk and conrod;
+//   at 1/60: camelhead, genus3hexa1, spot_control_mesh (the faceted 180-face cage) and
+//     triple_vierbein; spot_control_mesh is at the limit at 1/120 (CV 0.120).
+// Coverage: no surface point farther than 1.3 spacings from the curve (measured 0.78 to
+// 1.23; the issue asks for 0.8).
 struct EvennessCase {
   const char* file;
   std::vector<double> fractions;
@@ -174,7 +174,7 @@ TEST_P(EvennessOnRealMesh, MeetsTheTargetsWhereItsPartsAreThickEnough) {
     EXPECT_NEAR(evenness.gap_median, spacing, 0.1 * spacing);
     EXPECT_LE(evenness.gap_cv, 0.12);
     EXPECT_GE(evenness.gap_p5, 0.75 * spacing);
-    EXPECT_LE(evenness.coverage_max, 2.5 * spacing);
+    EXPECT_LE(evenness.coverage_max, 1.3 * spacing);
   }
 }
 
@@ -189,10 +189,9 @@ INSTANTIATE_TEST_SUITE_P(
                       EvennessCase{"bunny_closed.off", {60}}, EvennessCase{"stanford-bunny_original_holes.obj", {60}},
                       EvennessCase{"spot_triangulated.obj", {60}}, EvennessCase{"spot_quadrangulated.obj", {60}},
                       EvennessCase{"fertility.off", {60}}, EvennessCase{"fandisk_quads.off", {60}},
-                      EvennessCase{"conrod.stl", {60}}, EvennessCase{"hourglass_ico.obj", {60}},
-                      EvennessCase{"platonic_shelf.obj", {60}}, EvennessCase{"camelhead.off", {120}},
-                      EvennessCase{"genus3hexa1.obj", {120}}, EvennessCase{"spot_control_mesh.obj", {120}},
-                      EvennessCase{"triple_vierbein.obj", {120}}),
+                      EvennessCase{"conrod.stl", {60}}, EvennessCase{"hourglass_ico.obj", {30, 60}},
+                      EvennessCase{"platonic_shelf.obj", {30, 60}}, EvennessCase{"camelhead.off", {120}},
+                      EvennessCase{"genus3hexa1.obj", {120}}, EvennessCase{"triple_vierbein.obj", {120}}),
     [](const auto& param_info) { return test_name(param_info.param.file); });
 
 TEST(CliSpacing, BadValuesExitWithTwoAndWriteNothing) {

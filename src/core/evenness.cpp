@@ -2,6 +2,7 @@
 
 #include "meander/error.h"
 #include "point_grid.h"
+#include "surface_samples.h"
 #include "random.h"
 
 #include <algorithm>
@@ -82,13 +83,6 @@ void check_input(const PolygonMesh& surface, const Polylines& curves, const Even
   }
 }
 
-double triangle_area(Vec3 a, Vec3 b, Vec3 c) {
-  const double ux = double(b.x) - a.x, uy = double(b.y) - a.y, uz = double(b.z) - a.z;
-  const double vx = double(c.x) - a.x, vy = double(c.y) - a.y, vz = double(c.z) - a.z;
-  const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
-  return 0.5 * std::sqrt(x * x + y * y + z * z);
-}
-
 // a + (b - a) t, in double, rounded once.
 Vec3 lerp(Vec3 a, Vec3 b, double t) {
   return {float(a.x + (double(b.x) - a.x) * t), float(a.y + (double(b.y) - a.y) * t),
@@ -155,50 +149,6 @@ double percentile(std::vector<double>& v, double q) {
   return v[i] + (above - v[i]) * (at - double(i));
 }
 
-// Each face's area (its fan of triangles from its first corner), summed in face order.
-std::vector<double> cumulative_areas(const PolygonMesh& surface) {
-  std::vector<double> area(size_t(surface.num_faces()));
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, surface.num_faces(), 4096),
-                    [&](const tbb::blocked_range<int32_t>& r) {
-                      for (int32_t f = r.begin(); f < r.end(); ++f) {
-                        const auto v = surface.face(f);
-                        double a = 0;
-                        for (size_t i = 1; i + 1 < v.size(); ++i)
-                          a += triangle_area(surface.positions[size_t(v[0])], surface.positions[size_t(v[i])],
-                                             surface.positions[size_t(v[i + 1])]);
-                        area[size_t(f)] = a;
-                      }
-                    });
-  for (size_t f = 1; f < area.size(); ++f) area[f] += area[f - 1];
-  return area;
-}
-
-// Surface sample s, area-weighted: its own random stream, so that any thread draws it the
-// same. A face is picked by its share of the area, then a triangle of its fan by the
-// rest of the same draw, then a point of the triangle uniformly.
-Vec3 surface_sample(const PolygonMesh& surface, std::span<const double> cumulative, uint64_t seed, int32_t s) {
-  Random random(seed ^ (uint64_t(s) * 0xd1b54a32d192ed03ULL));
-  double u = random.unit() * cumulative.back();
-  auto face = std::upper_bound(cumulative.begin(), cumulative.end(), u);
-  // u rounded up to the total: the last face with area.
-  if (face == cumulative.end()) face = std::lower_bound(cumulative.begin(), cumulative.end(), cumulative.back());
-  const size_t f = size_t(face - cumulative.begin());
-  if (f > 0) u -= cumulative[f - 1];
-  const auto v = surface.face(int32_t(f));
-  const Vec3 a = surface.positions[size_t(v[0])];
-  size_t i = 1;
-  for (; i + 2 < v.size(); ++i) {
-    const double area = triangle_area(a, surface.positions[size_t(v[i])], surface.positions[size_t(v[i + 1])]);
-    if (u < area) break;
-    u -= area;
-  }
-  const Vec3 b = surface.positions[size_t(v[i])], c = surface.positions[size_t(v[i + 1])];
-  const double r = std::sqrt(random.unit()), t = random.unit();
-  const double wa = 1 - r, wb = r * (1 - t), wc = r * t;
-  return {float(wa * a.x + wb * b.x + wc * c.x), float(wa * a.y + wb * b.y + wc * c.y),
-          float(wa * a.z + wb * b.z + wc * c.z)};
-}
-
 } // namespace
 
 EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& curves, const EvennessOptions& options) {
@@ -220,12 +170,7 @@ EvennessReport measure_evenness(const PolygonMesh& surface, const Polylines& cur
   const Resampled r = resample(curves, length, report.step);
   report.points = int32_t(r.points.size());
 
-  std::vector<Vec3> samples(size_t(options.surface_samples));
-  tbb::parallel_for(tbb::blocked_range<int32_t>(0, options.surface_samples, 1024),
-                    [&](const tbb::blocked_range<int32_t>& range) {
-                      for (int32_t s = range.begin(); s < range.end(); ++s)
-                        samples[size_t(s)] = surface_sample(surface, cumulative, options.seed, s);
-                    });
+  const std::vector<Vec3> samples = surface_samples(surface, cumulative, options.surface_samples, options.seed);
   Box3 box;
   for (Vec3 p : r.points) box.extend(p);
   for (Vec3 p : samples) box.extend(p);

@@ -11,23 +11,28 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace meander {
 
-// Points in a uniform grid of cubic cells, hashed into a power-of-two table of buckets
-// by a counting sort (O(n)): bucket b holds the points ids[start[b] .. start[b+1]) at
-// sorted[start[b] .. start[b+1]). Cells that share a bucket share its points, which costs
-// time, never correctness: every point a query looks at is a true candidate.
+// Points in a uniform grid of cubic cells, put into a power-of-two table of buckets by a
+// counting sort (O(n)): bucket b holds the points ids[start[b] .. start[b+1]) at
+// sorted[start[b] .. start[b+1]). A cell's bucket is its coordinates modulo the table's
+// sides, so a cell and its 26 neighbours never share one; far cells may, which costs time,
+// never correctness: every point a query looks at is a true candidate.
 class PointGrid {
 public:
   // `cell` is raised so that the cell coordinates of `box`, which must hold the points
   // and the queries, fit in 21 bits.
   PointGrid(std::span<const Vec3> points, double cell, const Box3& box)
-      : origin_(box.min), cell_(std::max(cell, max_side(box) / double(1 << 20))),
-        shift_(64 - std::countr_zero(std::bit_ceil(std::max<size_t>(points.size(), 2)))) {
+      : origin_(box.min), cell_(std::max(cell, max_side(box) / double(1 << 20))) {
+    // About as many buckets as points, at least 64: at least 2 bits of each coordinate.
+    const int bits = std::max(6, std::countr_zero(std::bit_ceil(std::max<size_t>(points.size(), 2))));
+    bits_ = {(bits + 2) / 3, (bits - (bits + 2) / 3 + 1) / 2, 0};
+    bits_[2] = bits - bits_[0] - bits_[1];
     std::vector<uint32_t> bucket(points.size());
-    start_.assign((size_t(1) << (64 - shift_)) + 1, 0);
+    start_.assign((size_t(1) << bits) + 1, 0);
     for (size_t i = 0; i < points.size(); ++i) {
       const auto c = cell_of(points[i]);
       for (size_t a = 0; a < 3; ++a) {
@@ -48,22 +53,30 @@ public:
     }
   }
 
-  // Calls f(rank) once for each point in the buckets of p's cell and the 26 around it:
-  // every point within a cell of p, and others (the caller measures). `rank` is the
-  // point's place in ids(), so that a caller can lay out what it needs of each point in
-  // that order and read it in sequence.
+  // Calls f(rank) once for each point in the buckets of p's cell and the 26 around it,
+  // p's own cell first: every point within a cell of p, and others (the caller
+  // measures). `rank` is the point's place in ids(), so that a caller can lay out what it
+  // needs of each point in that order and read it in sequence. An f that returns bool
+  // stops the search by returning false.
   template <class F> void for_each_near(Vec3 p, F&& f) const {
     const auto c = cell_of(p);
-    std::array<uint64_t, 27> buckets{};
-    size_t count = 0;
-    for (int64_t z = std::max(lo_[2], c[2] - 1); z <= std::min(hi_[2], c[2] + 1); ++z)
-      for (int64_t y = std::max(lo_[1], c[1] - 1); y <= std::min(hi_[1], c[1] + 1); ++y)
-        for (int64_t x = std::max(lo_[0], c[0] - 1); x <= std::min(hi_[0], c[0] + 1); ++x) buckets[count++] = hash(x, y, z);
-    // Each bucket once, though cells may share one.
-    std::sort(buckets.begin(), buckets.begin() + ptrdiff_t(count));
-    const auto end = std::unique(buckets.begin(), buckets.begin() + ptrdiff_t(count));
-    for (auto b = buckets.begin(); b != end; ++b)
-      for (int32_t i = start_[*b]; i < start_[*b + 1]; ++i) f(size_t(i));
+    auto visit = [&](int64_t x, int64_t y, int64_t z) {
+      if (x < lo_[0] || x > hi_[0] || y < lo_[1] || y > hi_[1] || z < lo_[2] || z > hi_[2]) return true;
+      const uint64_t b = hash(x, y, z);
+      for (int32_t i = start_[b]; i < start_[b + 1]; ++i) {
+        if constexpr (std::is_same_v<decltype(f(size_t(i))), bool>) {
+          if (!f(size_t(i))) return false;
+        } else {
+          f(size_t(i));
+        }
+      }
+      return true;
+    };
+    if (!visit(c[0], c[1], c[2])) return;
+    for (int64_t z = c[2] - 1; z <= c[2] + 1; ++z)
+      for (int64_t y = c[1] - 1; y <= c[1] + 1; ++y)
+        for (int64_t x = c[0] - 1; x <= c[0] + 1; ++x)
+          if ((x != c[0] || y != c[1] || z != c[2]) && !visit(x, y, z)) return;
   }
 
   // The points' indices, by bucket: rank r of for_each_near is point ids()[r].
@@ -145,15 +158,15 @@ private:
             int64_t(std::floor((double(p.y) - origin_.y) / cell_)),
             int64_t(std::floor((double(p.z) - origin_.z) / cell_))};
   }
-  // Fibonacci hashing of the cell's 63-bit key (21 bits a coordinate) into the table.
+  // The low bits_[a] bits of each coordinate, side by side.
   uint64_t hash(int64_t x, int64_t y, int64_t z) const {
-    const uint64_t key = uint64_t(x) | uint64_t(y) << 21 | uint64_t(z) << 42;
-    return (key * 0x9e3779b97f4a7c15ULL) >> shift_;
+    auto low = [this](int64_t v, size_t a) { return uint64_t(v) & ((uint64_t(1) << bits_[a]) - 1); };
+    return low(x, 0) | low(y, 1) << bits_[0] | low(z, 2) << (bits_[0] + bits_[1]);
   }
 
   Vec3 origin_;
   double cell_;
-  int shift_;
+  std::array<int, 3> bits_{};
   // The cells that hold points lie in [lo, hi] on each axis.
   std::array<int64_t, 3> lo_{INT64_MAX, INT64_MAX, INT64_MAX}, hi_{INT64_MIN, INT64_MIN, INT64_MIN};
   std::vector<int32_t> start_;
