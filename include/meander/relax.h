@@ -2,9 +2,10 @@
 // a curve made on an even remesh has passes whose gaps still vary by a fifth (CV 0.20);
 // here each point moves across the surface toward the middle of the passes on either
 // side of it, half a spacing from the surface's boundary, so the gaps even out and holes
-// close, and no point ever moves more than a quarter of the way to another pass, so the
-// curves never cross themselves or each other. The order of the points stays the
-// cycle's.
+// close; parts of the surface farther than half a spacing from the curve pull the nearest
+// point toward them, so branches grow into the pockets beyond their tips; no point ever
+// moves more than a quarter of the way to another pass, so the curves never cross
+// themselves or each other. The order of the points stays the cycle's.
 #pragma once
 
 #include "meander/closest_points.h"
@@ -23,8 +24,9 @@ struct RelaxOptions {
 // passes about options.spacing apart, relaxed and returned resampled at about a quarter of
 // the spacing. Parts of the surface thinner than the spacing are told apart by their
 // normals: a pass does not push the one on the other side of a thin sheet. Deterministic
-// whatever the number of threads (oneTBB). O(iterations * P log P) for P points of the
-// result. Throws ParameterError for a spacing that is not a positive number or
+// whatever the number of threads (oneTBB). O(iterations * (P + S) log F) for P points
+// of the result, S = 8 area / spacing^2 surface samples and F faces, on curves whose passes
+// are about a spacing apart. Throws ParameterError for a spacing that is not a positive number or
 // iterations < 0, InputError for an open curve.
 struct RelaxedCurves {
   Polylines curves;

@@ -5,10 +5,12 @@
 #pragma once
 
 #include "meander/error.h"
+#include "meander/mesh.h"
 
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -70,5 +72,17 @@ private:
   std::unique_ptr<RTCDeviceTy, DeviceRelease> device_; // declared before the scene, released after it
   std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
 };
+
+// Gives a triangle geometry its vertices: a copy in a buffer of Embree's, which pads it as
+// its vector loads need (a shared buffer of Vec3 would end 4 bytes short).
+inline void set_vertices(RTCGeometry geometry, std::span<const Vec3> positions) {
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+  for (size_t v = 0; v < positions.size(); ++v) {
+    vertices[3 * v] = positions[v].x;
+    vertices[3 * v + 1] = positions[v].y;
+    vertices[3 * v + 2] = positions[v].z;
+  }
+}
 
 } // namespace meander

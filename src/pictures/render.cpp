@@ -227,13 +227,7 @@ void add_mesh(EmbreeScene& rtc, const SceneMesh& m, std::vector<GeometryInfo>& i
   }
   if (g.triangles.empty()) return;
   RTCGeometry geometry = rtcNewGeometry(rtc.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), mesh.positions.size()));
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    vertices[3 * v] = mesh.positions[v].x;
-    vertices[3 * v + 1] = mesh.positions[v].y;
-    vertices[3 * v + 2] = mesh.positions[v].z;
-  }
+  set_vertices(geometry, mesh.positions);
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(uint32_t), g.triangles.size() / 3));
   std::copy(g.triangles.begin(), g.triangles.end(), indices);

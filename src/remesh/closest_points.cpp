@@ -97,13 +97,7 @@ ClosestPoints::ClosestPoints(const PolygonMesh& surface) : tree_(std::make_uniqu
   if (corners.empty()) return;
   t.scene.emplace("closest points", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geometry = rtcNewGeometry(t.scene->device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), surface.positions.size()));
-  for (size_t v = 0; v < surface.positions.size(); ++v) {
-    vertices[3 * v] = surface.positions[v].x;
-    vertices[3 * v + 1] = surface.positions[v].y;
-    vertices[3 * v + 2] = surface.positions[v].z;
-  }
+  set_vertices(geometry, surface.positions);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, corners.data(), 0,
                              sizeof(std::array<int32_t, 3>), corners.size());
   t.scene->attach(geometry);

@@ -464,14 +464,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
   // touching its fresh memory) costs more than the one ray per vertex it serves.
   EmbreeScene scene("printability", RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT, RTC_BUILD_QUALITY_LOW);
   RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), size_t(nv)));
-  for (int32_t v = 0; v < nv; ++v) {
-    const Vec3 p = mesh.positions[size_t(v)];
-    vertices[3 * size_t(v)] = p.x;
-    vertices[3 * size_t(v) + 1] = p.y;
-    vertices[3 * size_t(v) + 2] = p.z;
-  }
+  set_vertices(geometry, mesh.positions);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tris.corners.data(), 0,
                              sizeof(std::array<int32_t, 3>), tris.corners.size());
   rtcSetGeometryIntersectFilterFunction(geometry, skip_triangles_around_vertex);
