@@ -96,8 +96,8 @@ TEST(Relax, KeepsEachCurveClosedAndOnItsComponent) {
 // A component much smaller than the spacing (a fin that repair cut off) keeps a curve of
 // at least 3 points: resampling at the spacing would leave too few to close.
 TEST(Relax, ACurveSmallerThanTheSpacingStaysACurve) {
-  const PolygonMesh two = test::side_by_side(sphere(2000), scaled_to_size(sphere(200), 0.002), {3, 0, 0});
-  const double spacing = 0.1;
+  const PolygonMesh two = test::side_by_side(sphere(500), scaled_to_size(sphere(200), 0.002), {3, 0, 0});
+  const double spacing = 0.25;
   const Polylines before = make_curve(two, CurveJob{}).curves;
   ASSERT_EQ(before.size(), 2);
   const Polylines after = relax_curves(before, two, ClosestPoints(two), {.spacing = spacing}).curves;
