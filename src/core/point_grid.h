@@ -23,8 +23,8 @@ namespace meander {
 // never correctness: every point a query looks at is a true candidate.
 class PointGrid {
 public:
-  // `cell` is raised so that the cell coordinates of `box`, which must hold the points
-  // and the queries, fit in 21 bits.
+  // `box` must hold the points and the queries; `cell` is raised to a millionth of its
+  // largest side, so that a cell's coordinates stay far from overflowing.
   PointGrid(std::span<const Vec3> points, double cell, const Box3& box)
       : origin_(box.min), cell_(std::max(cell, max_side(box) / double(1 << 20))) {
     // About as many buckets as points, at least 64: at least 2 bits of each coordinate.
