@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -67,8 +68,13 @@ struct Query {
     triangle = t;
     return true;
   }
-  // The query's radius: no less than the best distance, so that ties are still visited.
-  float radius() const { return std::nextafter(float(std::sqrt(best_squared)), std::numeric_limits<float>::infinity()); }
+  // The query's radius: the best distance and a millionth of it and of p's coordinates
+  // more, above the rounding of Embree's float distances to boxes, so that ties are still
+  // visited whatever the tree and the processor.
+  float radius() const {
+    const double r = std::sqrt(best_squared);
+    return float(r + 1e-6 * (r + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})));
+  }
 };
 
 bool visit(RTCPointQueryFunctionArguments* args) {
