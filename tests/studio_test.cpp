@@ -284,6 +284,7 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   const StudioResult quick = make_studio_result(surface, preview);
   EXPECT_EQ(quick.params.wire.levels, 0);
   EXPECT_EQ(quick.params.wire.curve.curve.samples, 2);
+  EXPECT_EQ(quick.params.wire.curve.relax, 2); // of a spacing's 20 rounds of relaxation
   const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 0}});
   EXPECT_EQ(quick.triangles, level0.triangles);
   EXPECT_EQ(studio_result_size(surface, preview), quick.triangles);

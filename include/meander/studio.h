@@ -43,9 +43,9 @@ struct StudioParams {
   DuotoneJob duotone;
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
-  // larger than 2.5M elements, studio_result_size), levels and subdivide 0, `radius auto`
-  // unchecked (see make_studio_result), and no printability report. The full result
-  // follows it.
+  // larger than 2.5M elements, studio_result_size), levels and subdivide 0, at most 2
+  // rounds of relaxation with a spacing, `radius auto` unchecked (see
+  // make_studio_result), and no printability report. The full result follows it.
   bool preview = false;
 };
 
