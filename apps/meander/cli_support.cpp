@@ -82,9 +82,11 @@ std::string leaves_note(const TriangleCycle& cycle) {
 
 void require_memory_for_spacing(const std::string& input, const PolygonMesh& mesh, std::optional<double> model_size,
                                 std::optional<double> spacing, Quadrangulation quadrangulation) {
-  // Remeshing, relaxing and making the curve took 760 to 1150 bytes per remeshed face at
-  // their peak (the kitten at 1/530 and 1/270 of its diagonal, GNU time's maximum RSS).
-  constexpr double kBytesPerRemeshedFace = 1200;
+  // Remeshing, relaxing (with its pocket samples) and making the curve took about 3.8 KB
+  // per estimated remeshed face at their peak, above the input's own memory (the kitten
+  // at 1/270 and 1/530 of its diagonal: 150 and 428 MB for 29k and 112k faces, GNU
+  // time's maximum RSS).
+  constexpr double kBytesPerRemeshedFace = 4000;
   const int64_t faces = remeshed_faces(mesh, model_size, spacing, quadrangulation);
   require_memory(
       input, double(faces), kBytesPerRemeshedFace,
