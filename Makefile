@@ -7,7 +7,7 @@ JOBS ?= $(shell nproc)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev \
                    libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev \
-                   libembree-dev libstb-dev libturbojpeg0-dev lib3mf-dev libzip-dev libcgal-dev libmeshoptimizer-dev libtinygltf-dev \
+                   libembree-dev libstb-dev libturbojpeg0-dev lib3mf-dev libzip-dev libcgal-dev libtinygltf-dev \
                    clang-16 libclang-rt-16-dev
 # cpp-httplib: the studio's server (`meander serve`).
 DEBIAN_PACKAGES += libcpp-httplib-dev

@@ -1,4 +1,5 @@
 #include "meander/check.h"
+#include "meander/coarsen.h"
 #include "meander/error.h"
 #include "meander/remesh.h"
 #include "meander/shapes.h"
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -97,6 +99,28 @@ TEST(Remesh, VerticesLieOnTheInputSurface) {
     for (size_t v = 0; v < projected.size(); ++v)
       farthest = std::max(farthest, norm(projected[v] - result.positions[v]));
     EXPECT_LT(farthest, 1e-4);
+  }
+}
+
+// Triangle meshes of more than 8 times the faces of the result are coarsened first
+// (coarsen.h): the result is the same kind of even mesh on the same surface. (A Möbius
+// band's boundary and seam, which CGAL keeps, stay at the coarsened mesh's edges, about
+// half the target.)
+TEST(Remesh, AFineInputIsCoarsenedFirstToTheSameKindOfResult) {
+  const std::vector<Case> fine = {{"sphere", sphere(100'000), 0.12},
+                                  {"torus", torus(60'000), 0.1},
+                                  {"grid", grid(40'000), 0.05}};
+  for (const Case& c : fine) {
+    SCOPED_TRACE(c.name);
+    ASSERT_GT(c.mesh.num_faces(), 8 * remeshed_faces_estimate(c.mesh, c.edge_length));
+    const PolygonMesh result = remesh(c.mesh, {.edge_length = c.edge_length});
+    EXPECT_EQ(topology_of(result), topology_of(c.mesh));
+    const std::vector<double> lengths = edge_lengths(result);
+    EXPECT_GT(lengths[lengths.size() / 2], 0.8 * c.edge_length);
+    EXPECT_LT(lengths[lengths.size() / 2], 1.05 * c.edge_length);
+    std::vector<Vec3> projected = result.positions;
+    ClosestPoints(c.mesh).project(projected);
+    for (size_t v = 0; v < projected.size(); ++v) ASSERT_LT(norm(projected[v] - result.positions[v]), 1e-4);
   }
 }
 
@@ -194,6 +218,93 @@ TEST(ClosestPoints, FindsWhatEveryTriangleSearchedFinds) {
     for (int32_t v : square.face(f))
       if (square.positions[size_t(v)] == corner) lowest = std::min(lowest, f);
   EXPECT_EQ(ClosestPoints(square).closest_hit(to_double(corner) + Vec3d{0, 0, 1}).triangle, lowest);
+}
+
+// Each polygon fanned from its first vertex, as the writers triangulate it.
+PolygonMesh fanned(const PolygonMesh& mesh) {
+  PolygonMesh out;
+  out.positions = mesh.positions;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    for (size_t i = 1; i + 1 < mesh.face(f).size(); ++i) out.add_face({mesh.face(f)[0], mesh.face(f)[i], mesh.face(f)[i + 1]});
+  return out;
+}
+
+// Fine inputs of every kind remesh() coarsens: a UV sphere (whose poles' long thin fans
+// meshoptimizer's simplifier folded), closed surfaces of genus 1 to 3, a disk, a Möbius
+// band and two components at once.
+std::vector<Case> fine_cases() {
+  return {{"sphere", sphere(100'000), 0.1},
+          {"torus", torus(60'000), 0.1},
+          {"pretzel", fanned(genus_surface(2, 30'000)), 0.25},
+          {"genus 3", fanned(genus_surface(3, 40'000)), 0.25},
+          {"grid", grid(40'000), 0.04},
+          {"moebius", fanned(moebius(30'000)), 0.06},
+          {"sphere and torus", test::side_by_side(sphere(20'000), torus(20'000), {3, 0, 0}), 0.15}};
+}
+
+TEST(Coarsen, KeepsTheTopologyAndCollapsesTheShortEdges) {
+  for (const Case& c : fine_cases()) {
+    SCOPED_TRACE(c.name);
+    const PolygonMesh result = coarsen(c.mesh, c.edge_length);
+    EXPECT_EQ(topology_of(result), topology_of(c.mesh));
+    const MeshReport report = inspect(result);
+    EXPECT_EQ(report.non_manifold_edges + report.non_manifold_vertices + report.degenerate_faces + report.duplicate_faces +
+                  report.zero_area_faces,
+              0);
+    EXPECT_LT(result.num_faces(), c.mesh.num_faces() / 10);
+    const std::vector<double> lengths = edge_lengths(result);
+    EXPECT_GT(lengths[lengths.size() / 2], 0.5 * c.edge_length); // the median
+    EXPECT_LE(lengths.back(), 1.5 * c.edge_length);              // the input's are all shorter
+  }
+}
+
+TEST(Coarsen, EveryVertexIsOneOfTheInputsInItsOrder) {
+  for (const Case& c : fine_cases()) {
+    SCOPED_TRACE(c.name);
+    const PolygonMesh result = coarsen(c.mesh, c.edge_length);
+    size_t next = 0; // the input vertex after the last one matched
+    for (const Vec3 p : result.positions) {
+      while (next < c.mesh.positions.size() && !(c.mesh.positions[next] == p)) ++next;
+      ASSERT_LT(next, c.mesh.positions.size()) << "a vertex that is not the input's, or out of order";
+      ++next;
+    }
+  }
+}
+
+TEST(Coarsen, SameInputSameMesh) {
+  const PolygonMesh mesh = fanned(genus_surface(2, 30'000));
+  const PolygonMesh a = coarsen(mesh, 0.1), b = coarsen(mesh, 0.1);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.face_vertices, b.face_vertices);
+}
+
+// The smallest closed surface and the smallest disk, and a triangular bipyramid whose
+// short ring edge would pinch it (its ends share the ring's third vertex, which the link
+// condition sees; no face turns by more than 12 degrees): any collapse would fold them
+// flat, close the boundary or pinch, so none is made however long the length.
+TEST(Coarsen, LeavesWhatCannotBeCollapsed) {
+  PolygonMesh tetrahedron;
+  tetrahedron.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const std::array<int32_t, 3> f : {std::array{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}) tetrahedron.add_face(f);
+  PolygonMesh triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.add_face({0, 1, 2});
+  PolygonMesh bipyramid;
+  bipyramid.positions = {{1, 0, 0}, {0.9f, 0.3f, 0}, {-0.5f, -0.87f, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const std::array<int32_t, 3> f : {std::array{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {1, 0, 4}, {2, 1, 4}, {0, 2, 4}})
+    bipyramid.add_face(f);
+  for (const PolygonMesh* mesh : {&tetrahedron, &triangle, &bipyramid}) {
+    const PolygonMesh result = coarsen(*mesh, 10);
+    EXPECT_EQ(result.positions, mesh->positions);
+    EXPECT_EQ(result.face_vertices, mesh->face_vertices);
+  }
+}
+
+TEST(Coarsen, RefusesPolygons) {
+  PolygonMesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.add_face({0, 1, 2, 3});
+  EXPECT_THROW(coarsen(quad, 1), InputError);
 }
 
 } // namespace
