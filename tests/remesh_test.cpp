@@ -124,6 +124,21 @@ TEST(Remesh, AFineInputIsCoarsenedFirstToTheSameKindOfResult) {
   }
 }
 
+// A face whose corners lie on a line (CGAL's degtri_four.off: a square of four triangles
+// with one such on its boundary) crashed CGAL 5.5's remeshing at fine lengths, once split
+// into faces that were all a vertex had.
+TEST(Remesh, AFaceWithItsCornersInALineIsTakenAway) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {2, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 1, 0}};
+  for (const std::array<int32_t, 3> f : {std::array{0, 1, 2}, {0, 2, 3}, {2, 1, 4}, {3, 2, 4}}) mesh.add_face(f);
+  ASSERT_EQ(inspect(mesh).zero_area_faces, 1);
+  for (double length : {0.5, 0.1, 0.03}) {
+    const PolygonMesh result = remesh(mesh, {.edge_length = length});
+    EXPECT_EQ(topology_of(result), topology_of(mesh)) << length;
+    EXPECT_EQ(inspect(result).zero_area_faces, 0) << length;
+  }
+}
+
 TEST(Remesh, SameInputSameMesh) {
   const PolygonMesh mesh = genus_surface(2, 3000);
   const PolygonMesh a = remesh(mesh, {.edge_length = 0.12}), b = remesh(mesh, {.edge_length = 0.12});

@@ -8,6 +8,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -266,6 +267,11 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
   }
   if (!PMP::triangulate_faces(surface))
     throw TopologyError("remeshing: a polygon of the mesh could not be triangulated (degenerate)");
+  // Faces whose corners lie on a line go first (collapsed or flipped away; the topology
+  // is checked below): CGAL 5.5's tangential relaxation crashes at a vertex all of whose
+  // faces are such (CGAL issue 7345), as splitting one along a fine spacing makes.
+  PMP::remove_degenerate_faces(surface);
+  surface.collect_garbage();
   std::vector<SurfaceMesh::Face_index> whole, opened;
   for (SurfaceMesh::Face_index f : surface.faces()) {
     const int32_t v = origin[surface.target(surface.halfedge(f))];
