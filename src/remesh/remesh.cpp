@@ -240,11 +240,10 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
   if (options.max_faces > 0 && estimate > options.max_faces)
     throw InputError("the remeshed surface would have about " + std::to_string(estimate) + " faces, over the limit of " +
                      std::to_string(options.max_faces) + ": choose a larger spacing");
-  // CGAL keeps protected edges no longer than 4/3 of the target.
   const Topology before = topology(mesh);
   // A triangle mesh of more than 8 times the faces of the result is coarsened first:
   // CGAL's remeshing then starts from fewer, and the projection onto the input restores
-  // the shape.
+  // the shape. CGAL keeps protected edges no longer than 4/3 of the target.
   const bool fine = mesh.face_vertices.size() == 3 * size_t(mesh.num_faces()) && mesh.num_faces() > 8 * estimate;
   const CutMesh cut = cut_open(fine ? coarsen(mesh, kCoarse * length) : mesh, length * 4 / 3);
   const PolygonMesh& open = cut.mesh;
