@@ -235,6 +235,42 @@ TEST(ClosestPoints, FindsWhatEveryTriangleSearchedFinds) {
   EXPECT_EQ(ClosestPoints(square).closest_hit(to_double(corner) + Vec3d{0, 0, 1}).triangle, lowest);
 }
 
+// A point moved a little from a hit, outside a convex surface, walks to the closest
+// point, as the tree finds it, also when it moved past corners of faces or far across a
+// fine surface (then the tree takes over); and it stays on the sheet it was on where
+// another is nearer.
+TEST(ClosestPoints, NearbyHitWalksToTheClosestPointAround) {
+  const PolygonMesh ball = sphere(20000);
+  const ClosestPoints surface(ball);
+  std::mt19937 random(7);
+  std::normal_distribution<double> gauss;
+  for (int k = 0; k < 300; ++k) {
+    const ClosestPoints::Hit from = surface.closest_hit({gauss(random), gauss(random), gauss(random)});
+    // Along the plane of its face, which lies outside the sphere.
+    const Vec3d move = cross(from.normal, {gauss(random), gauss(random), gauss(random)});
+    const Vec3d p = from.point + move * (k < 150 ? 0.02 : 0.3);
+    const ClosestPoints::Hit walked = surface.nearby_hit(p, from), closest = surface.closest_hit(p);
+    EXPECT_NEAR(norm(walked.point - closest.point), 0, 1e-9) << k;
+  }
+  const PolygonMesh square = grid(20000);
+  const ClosestPoints plane(square);
+  const ClosestPoints::Hit corner = plane.closest_hit({0, 0, 0});
+  EXPECT_EQ(plane.nearby_hit({0.9, 0.8, 0.5}, corner).point, plane.closest_hit({0.9, 0.8, 0.5}).point);
+  // Two sheets 0.1 apart: a point moved to 0.06 below the upper one stays on it.
+  PolygonMesh sheets = square;
+  for (Vec3 p : square.positions) sheets.positions.push_back({p.x, p.y, p.z - 0.1f});
+  for (int32_t f = 0; f < square.num_faces(); ++f) {
+    std::vector<int32_t> face(square.face(f).begin(), square.face(f).end());
+    for (int32_t& v : face) v += square.num_vertices();
+    sheets.add_face(face);
+  }
+  const ClosestPoints two(sheets);
+  const ClosestPoints::Hit upper = two.closest_hit({0.5, 0.5, 0.01});
+  ASSERT_NEAR(upper.point.z, 0, 1e-9);
+  EXPECT_NEAR(two.closest_hit({0.52, 0.5, -0.06}).point.z, -0.1, 1e-6);
+  EXPECT_NEAR(two.nearby_hit({0.52, 0.5, -0.06}, upper).point.z, 0, 1e-9);
+}
+
 // Each polygon fanned from its first vertex, as the writers triangulate it.
 PolygonMesh fanned(const PolygonMesh& mesh) {
   PolygonMesh out;

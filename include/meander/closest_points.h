@@ -30,12 +30,20 @@ public:
   // moves a little) makes the query several times as fast.
   Hit closest_hit(Vec3d p) const;
   Hit closest_hit(Vec3d p, const Hit& hint) const;
+  // A nearest point of the surface around `from`, for a point that moved a little from
+  // it: walked to from from's triangle across edges and vertices to nearer faces, so a
+  // few faces are looked at instead of the tree, and the point stays on the part of the
+  // surface it was on (not the other side of a thin sheet, nor another face of a concave
+  // fold, that is nearer). The closest point where p lies outside a convex surface.
+  // Deterministic.
+  Hit nearby_hit(Vec3d p, const Hit& from) const;
   // Moves each point to the closest point of the surface, and sets normals[i] (if
   // `normals` is not empty, as long as `points`) to the normal there: in parallel, and the
   // same result whatever the number of threads.
   void project(std::span<Vec3> points, std::span<Vec3> normals = {}) const;
 
 private:
+  Hit hit_on(int32_t triangle, Vec3d point) const;
   struct Tree;
   std::unique_ptr<Tree> tree_;
 };

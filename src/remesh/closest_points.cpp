@@ -9,39 +9,46 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace meander {
 
 namespace {
 
+// Where on triangle abc the point closest to p lies.
+enum class Region { inside, a, b, c, ab, ac, bc };
+
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5):
 // by the Voronoi region of the triangle's vertices, edges or inside that p lies in.
-Vec3d closest_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+std::pair<Vec3d, Region> closest_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
   const Vec3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
+  if (d1 <= 0 && d2 <= 0) return {a, Region::a};
   const Vec3d bp = p - b;
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
+  if (d3 >= 0 && d4 <= d3) return {b, Region::b};
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return {a + ab * (d1 / (d1 - d3)), Region::ab};
   const Vec3d cp = p - c;
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
+  if (d6 >= 0 && d5 <= d6) return {c, Region::c};
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return {a + ac * (d2 / (d2 - d6)), Region::ac};
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return {b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))), Region::bc};
   const double denominator = va + vb + vc;
   // A degenerate triangle (all three zero) is met by the edge tests above unless p is on it.
-  if (!(denominator > 0)) return a;
-  return a + ab * (vb / denominator) + ac * (vc / denominator);
+  if (!(denominator > 0)) return {a, Region::a};
+  return {a + ab * (vb / denominator) + ac * (vc / denominator), Region::inside};
 }
 
 struct Triangles {
   std::vector<Vec3> positions;
   std::vector<std::array<int32_t, 3>> corners;
+  // The triangles around each vertex v: around[around_start[v]] up to around_start[v + 1].
+  std::vector<int32_t> around_start, around;
 
   std::array<Vec3d, 3> at(int32_t t) const {
     const std::array<int32_t, 3>& v = corners[size_t(t)];
@@ -60,7 +67,7 @@ struct Query {
 
   bool offer(int32_t t) {
     const auto [a, b, c] = triangles->at(t);
-    const Vec3d q = closest_on_triangle(p, a, b, c);
+    const Vec3d q = closest_on_triangle(p, a, b, c).first;
     const double d = dot(q - p, q - p);
     if (d > best_squared || (d == best_squared && t > triangle)) return false;
     best = q;
@@ -101,6 +108,15 @@ ClosestPoints::ClosestPoints(const PolygonMesh& surface) : tree_(std::make_uniqu
     for (size_t i = 1; i + 1 < face.size(); ++i) corners.push_back({face[0], face[i], face[i + 1]});
   }
   if (corners.empty()) return;
+  std::vector<int32_t>& start = t.triangles.around_start;
+  start.assign(surface.positions.size() + 1, 0);
+  for (const std::array<int32_t, 3>& v : corners)
+    for (const int32_t corner : v) ++start[size_t(corner) + 1];
+  for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  t.triangles.around.resize(size_t(start.back()));
+  std::vector<int32_t> filled(start.begin(), start.end() - 1);
+  for (size_t triangle = 0; triangle < corners.size(); ++triangle)
+    for (const int32_t corner : corners[triangle]) t.triangles.around[size_t(filled[size_t(corner)]++)] = int32_t(triangle);
   t.scene.emplace("closest points", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geometry = rtcNewGeometry(t.scene->device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   set_vertices(geometry, surface.positions);
@@ -133,10 +149,66 @@ ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint) const {
   rtcPointQuery(tree_->scene->scene(), &query, &context, visit, &q);
   // Only a surface of degenerate triangles, which Embree leaves out, has none.
   if (q.triangle < 0) return {p, {}};
-  const auto [a, b, c] = tree_->triangles.at(q.triangle);
+  return hit_on(q.triangle, q.best);
+}
+
+ClosestPoints::Hit ClosestPoints::hit_on(int32_t triangle, Vec3d point) const {
+  const auto [a, b, c] = tree_->triangles.at(triangle);
   const Vec3d n = cross(b - a, c - a);
   const double length = norm(n);
-  return {q.best, length > 0 ? n * (1 / length) : Vec3d{}, q.triangle};
+  return {point, length > 0 ? n * (1 / length) : Vec3d{}, triangle};
+}
+
+ClosestPoints::Hit ClosestPoints::nearby_hit(Vec3d p, const Hit& from) const {
+  const Triangles& triangles = tree_->triangles;
+  if (from.triangle < 0 || size_t(from.triangle) >= triangles.corners.size()) return closest_hit(p);
+  // A walk longer than this (a point that moved across many faces of a fine surface)
+  // is left to the tree.
+  constexpr int kSteps = 64;
+  int32_t t = from.triangle;
+  auto [a, b, c] = triangles.at(t);
+  auto [q, region] = closest_on_triangle(p, a, b, c);
+  double best = dot(q - p, q - p);
+  for (int step = 0; step < kSteps; ++step) {
+    // Inside t, q is nearest of all points around it on the surface.
+    if (region == Region::inside) return hit_on(t, q);
+    // Else the faces that may be nearer are those around the vertex q lies on, or around
+    // either end of its edge (not only across it: past a sliver of a face whose corners
+    // lie in a line, too). Of faces as near, the lowest numbered, so that each step goes
+    // nearer or lower and the walk ends.
+    const std::array<int32_t, 3>& v = triangles.corners[size_t(t)];
+    const auto [first, second] = [&]() -> std::pair<int32_t, int32_t> {
+      switch (region) {
+      case Region::a: return {v[0], -1};
+      case Region::b: return {v[1], -1};
+      case Region::c: return {v[2], -1};
+      case Region::ab: return {v[0], v[1]};
+      case Region::ac: return {v[0], v[2]};
+      default: return {v[1], v[2]};
+      }
+    }();
+    int32_t next = -1;
+    std::pair<Vec3d, Region> there;
+    for (const int32_t corner : {first, second}) {
+      if (corner < 0) continue;
+      for (int32_t k = triangles.around_start[size_t(corner)]; k < triangles.around_start[size_t(corner) + 1]; ++k) {
+        const int32_t u = triangles.around[size_t(k)];
+        if (u == t) continue;
+        const auto [ua, ub, uc] = triangles.at(u);
+        const std::pair<Vec3d, Region> on = closest_on_triangle(p, ua, ub, uc);
+        const double d = dot(on.first - p, on.first - p);
+        if (d < best || (d == best && u < (next < 0 ? t : next))) {
+          best = d;
+          next = u;
+          there = on;
+        }
+      }
+    }
+    if (next < 0) return hit_on(t, q);
+    t = next;
+    std::tie(q, region) = there;
+  }
+  return closest_hit(p, hit_on(t, q));
 }
 
 void ClosestPoints::project(std::span<Vec3> points, std::span<Vec3> normals) const {

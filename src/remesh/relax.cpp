@@ -274,7 +274,7 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       const Vec3d p = at[i];
       const Vec3d middle = (at[before] + at[after]) * 0.5;
       const double move = std::clamp(centre[i] + kFairing * dot(middle - p, across[i]), -limit[i], limit[i]);
-      out.points[i] = closest.closest_hit(p + across[i] * move, curves.points[i]);
+      out.points[i] = closest.nearby_hit(p + across[i] * move, curves.points[i]);
       if (out.points[i].normal == Vec3d{}) out.points[i].normal = curves.points[i].normal;
     }
   });
@@ -289,12 +289,16 @@ RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, 
     throw ParameterError("spacing", " must be a positive number to relax a curve");
   if (options.iterations < 0) throw ParameterError("iterations", " must be at least 0");
   const double step = options.spacing / kStepsPerSpacing;
-  Curves work;
-  for (int32_t k = 0; k < curves.size(); ++k) {
+  for (int32_t k = 0; k < curves.size(); ++k)
     if (!curves.closed(k)) throw InputError("curve " + std::to_string(k) + " is open: only closed curves are relaxed");
-    for (const Vec3 p : curves.polyline(k)) work.points.push_back(closest.closest_hit(to_double(p)));
-    work.start.push_back(int32_t(work.points.size()));
-  }
+  Curves work{.points = std::vector<ClosestPoints::Hit>(curves.points.size()), .start = curves.start};
+  // Each query hinted by the last one's answer: points next to each other along a curve
+  // are near on the surface.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, curves.points.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+    ClosestPoints::Hit last;
+    for (size_t i = range.begin(); i < range.end(); ++i)
+      last = work.points[i] = closest.closest_hit(to_double(curves.points[i]), last);
+  });
   // Points stay on the surface: its box, grown by a cell, holds them and the queries.
   const double reach = kReach * options.spacing;
   Box3 box = bounding_box(surface.positions);
