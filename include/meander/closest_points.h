@@ -10,7 +10,8 @@
 namespace meander {
 
 // A bounding volume hierarchy (Embree) of a surface's faces, each polygon fanned from its first vertex
-// as the writers triangulate it; built once, then queried from any thread.
+// as the writers triangulate it, and the triangles around each vertex (for walks across
+// the surface); built once, then queried from any thread.
 class ClosestPoints {
 public:
   // O(n log n) for n faces. The surface may be empty (then queries leave points alone).
@@ -34,8 +35,9 @@ public:
   // it: walked to from from's triangle across edges and vertices to nearer faces, so a
   // few faces are looked at instead of the tree, and the point stays on the part of the
   // surface it was on (not the other side of a thin sheet, nor another face of a concave
-  // fold, that is nearer). The closest point where p lies outside a convex surface.
-  // Deterministic.
+  // fold, that is nearer). The closest point where p lies outside a convex surface; also
+  // when the walk would be longer than 64 faces, which is left to the tree, or `from`
+  // has no triangle. O(faces crossed). Deterministic.
   Hit nearby_hit(Vec3d p, const Hit& from) const;
   // Moves each point to the closest point of the surface, and sets normals[i] (if
   // `normals` is not empty, as long as `points`) to the normal there: in parallel, and the
