@@ -129,7 +129,7 @@ TEST(SpanningTree, DfsMakesSnakesAndBfsMakesShortBranches) {
 
 // branching_forest spans every component for any waviness, is the same for the same
 // seed, and has more leaves the higher `branches`: a few seeds' totals grow steadily from
-// 0 to 1 on a grid.
+// 0 (the depth-first tree) to 1 on a grid.
 TEST(SpanningTree, BranchesSetHowManyLeaves) {
   const Graph g = grid_and_triangle(30, 30);
   const EdgeTable table{.num_nodes = g.num_nodes, .num_edges = int32_t(g.edges.size()), .rows = g.edges[0].data()};
@@ -146,6 +146,8 @@ TEST(SpanningTree, BranchesSetHowManyLeaves) {
     EXPECT_GT(leaves, previous);
     previous = leaves;
   }
+  // No branches: the depth-first walk.
+  EXPECT_EQ(branching_forest(table, 0, 5), spanning_forest(table, TreeStrategy::dfs, 5));
   // A path's two ends are its leaves.
   const Graph path{.num_nodes = 4, .edges = {{0, 1}, {1, 2}, {2, 3}}};
   const EdgeTable path_table{.num_nodes = 4, .num_edges = 3, .rows = path.edges[0].data()};

@@ -71,10 +71,10 @@ std::vector<int32_t> spanning_forest(const EdgeTable& graph, TreeStrategy strate
 // (many short branches), continuously: a depth-first walk from a random root in each
 // component in which, at each step with probability `branches`, the node it stands on
 // first takes all its neighbours still outside the tree as children (those not walked on
-// from stay leaves). Leaves grow steadily with `branches` (the kitten at 1/60 of its
-// diagonal: 120, 249, 346, 406, 453 at 0, 0.25, 0.5, 0.75, 1; the random tree gives
-// about 310). Increasing edge ids, the same for the same seed. O(E). Throws
-// ParameterError for branches outside [0, 1].
+// from stay leaves); at 0, TreeStrategy::dfs's forest of the same seed. Leaves grow
+// steadily with `branches` (the kitten at 1/60 of its diagonal: 116, 242, 333, 395, 459
+// at 0, 0.25, 0.5, 0.75, 1; the random tree gives about 310). Increasing edge ids, the
+// same for the same seed. O(E). Throws ParameterError for branches outside [0, 1].
 std::vector<int32_t> branching_forest(const EdgeTable& graph, double branches, uint64_t seed);
 
 // The leaves of a forest (ids into `graph`): its nodes of degree 1, the tips of the

@@ -378,45 +378,12 @@ std::vector<int32_t> breadth_first(const EdgeTable& g, Random& rng) {
   return forest;
 }
 
-std::vector<int32_t> depth_first(const EdgeTable& g, Random& rng) {
-  const Adjacency a = build_adjacency(g);
-  const RotatedNodes nodes(g.num_nodes, rng);
-  std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
-  // Each node scans its neighbours once, starting at a random offset, so the walk turns
-  // differently for each seed while the total work stays linear.
-  std::vector<int32_t> offset(size_t(g.num_nodes)), scanned(size_t(g.num_nodes), 0);
-  std::vector<int32_t> forest, stack;
-  forest.reserve(size_t(g.num_nodes));
-  auto enter = [&](int32_t n) {
-    seen[size_t(n)] = 1;
-    offset[size_t(n)] = int32_t(rng.below(uint32_t(std::max(1, a.degree(n)))));
-    stack.push_back(n);
-  };
-  for (int32_t i = 0; i < g.num_nodes; ++i) {
-    if (seen[size_t(nodes[i])]) continue;
-    enter(nodes[i]);
-    while (!stack.empty()) {
-      const int32_t u = stack.back();
-      if (scanned[size_t(u)] == a.degree(u)) {
-        stack.pop_back();
-        continue;
-      }
-      const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % a.degree(u);
-      const auto [n, e] = a.adjacent[size_t(k)];
-      if (seen[size_t(n)]) continue;
-      forest.push_back(e);
-      enter(n);
-    }
-  }
-  return forest;
-}
-
 // A depth-first walk (long snakes, few leaves) in which, with probability `branches`, the
 // node it stands on first takes all its neighbours still outside the tree as children:
 // those it does not walk on from are leaves, so the more often, the more short branches.
-// Each node scans its neighbours once from a random offset, as in depth_first, so the
-// work is linear.
-std::vector<int32_t> branching_walk(const EdgeTable& g, Random& rng, double branches) {
+// Each node scans its neighbours once, starting at a random offset, so the walk turns
+// differently for each seed while the total work stays linear.
+std::vector<int32_t> depth_first(const EdgeTable& g, Random& rng, double branches = 0) {
   const Adjacency a = build_adjacency(g);
   const RotatedNodes nodes(g.num_nodes, rng);
   std::vector<uint8_t> seen(size_t(g.num_nodes), 0);
@@ -437,7 +404,8 @@ std::vector<int32_t> branching_walk(const EdgeTable& g, Random& rng, double bran
         stack.pop_back();
         continue;
       }
-      const bool all = rng.unit() < branches;
+      // No draw at 0, so that the plain walk's trees stay what they were.
+      const bool all = branches > 0 && rng.unit() < branches;
       do {
         const int32_t k = a.start[size_t(u)] + (offset[size_t(u)] + scanned[size_t(u)]++) % a.degree(u);
         const auto [n, e] = a.adjacent[size_t(k)];
@@ -488,7 +456,7 @@ std::vector<int32_t> wilson(const EdgeTable& g, Random& rng) {
   return forest;
 }
 
-// spanning_forest; `count_all` as for minimum_forest; `branches` set: branching_walk.
+// spanning_forest; `count_all` as for minimum_forest; `branches` set: depth_first with them.
 std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, uint64_t seed, bool count_all,
                                std::optional<double> branches = std::nullopt) {
   const size_t m = size_t(graph.num_edges);
@@ -499,7 +467,7 @@ std::vector<int32_t> forest_of(const EdgeTable& graph, TreeStrategy strategy, ui
     in_forest = minimum_forest(graph, seed, strategy == TreeStrategy::shaped, count_all);
   } else {
     Random rng(seed);
-    const std::vector<int32_t> forest = branches                             ? branching_walk(graph, rng, *branches)
+    const std::vector<int32_t> forest = branches                             ? depth_first(graph, rng, *branches)
                                         : strategy == TreeStrategy::uniform ? wilson(graph, rng)
                                         : strategy == TreeStrategy::bfs     ? breadth_first(graph, rng)
                                                                             : depth_first(graph, rng);
