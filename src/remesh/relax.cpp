@@ -51,12 +51,6 @@ constexpr int kSmoothing = 8;
 constexpr double kPocket = 0.5;
 constexpr double kPull = 1.5;
 constexpr double kSamples = 8;
-// Needles (without_needles): arms nearer than this many spacings, within that many
-// along the curve. Cut every round, the gaps' CV of the bunny at 1/30 fell from 0.14 to
-// 0.11 and fertility's 5th percentile rose from 0.47 to 0.69 spacings; cut only at the
-// end, the pockets they left stayed open (farthest points up to 0.2 spacings farther).
-constexpr double kNeedle = 0.25;
-constexpr double kNeedleLength = 4;
 
 Vec3d normalized(Vec3d v) {
   const double length = norm(v);
@@ -118,56 +112,6 @@ Curves resampled(const Curves& curves, double step, const ClosestPoints& closest
     // The closing stretch, back to the first point.
     const ClosestPoints::Hit last = out.points.back(), p = out.points[begin];
     fill(last, p, norm(p.point - last.point));
-    out.start.push_back(int32_t(out.points.size()));
-  }
-  return out;
-}
-
-// Each curve without its needles: where two points of a curve lie nearer than kNeedle
-// spacings though farther apart along it than kPassRatio times that, within
-// kNeedleLength spacings along, the points between are dropped, so the curve goes
-// straight across. Such a pinched hairpin grows where the curve moved onto the input
-// jumps across a thin part that the even mesh strayed from; its arms, hundredths of a
-// spacing apart, would leave a wire no room.
-Curves without_needles(const Curves& curves, double spacing, const Box3& box) {
-  const double near = kNeedle * spacing, longest = kNeedleLength * spacing;
-  const size_t n = curves.points.size();
-  std::vector<Vec3> cells(n);
-  for (size_t i = 0; i < n; ++i) cells[i] = to_float(curves.points[i].point);
-  const PointGrid grid(cells, near, box);
-  std::vector<uint8_t> dropped(n, 0);
-  Curves out;
-  for (int32_t k = 0; k < curves.size(); ++k) {
-    const int32_t first = curves.start[size_t(k)], end = curves.start[size_t(k) + 1], m = end - first;
-    std::vector<double> along(size_t(m) + 1, 0);
-    for (int32_t i = 0; i < m; ++i)
-      along[size_t(i) + 1] = along[size_t(i)] + norm(curves.points[size_t(first + (i + 1) % m)].point -
-                                                    curves.points[size_t(first + i)].point);
-    const double length = along[size_t(m)];
-    // A curve a few needles long is left as it is, lest a cut take most of it.
-    if (length < 4 * longest) {
-      out.points.insert(out.points.end(), curves.points.begin() + first, curves.points.begin() + end);
-      out.start.push_back(int32_t(out.points.size()));
-      continue;
-    }
-    for (int32_t i = first; i < end; ++i) {
-      if (dropped[size_t(i)]) continue;
-      // The point farthest ahead that closes a needle with i.
-      int32_t cut_ahead = 0;
-      grid.for_each_near(cells[size_t(i)], [&](size_t rank) {
-        const int32_t j = grid.ids()[rank];
-        if (j < first || j >= end || j == i || dropped[size_t(j)]) return;
-        const double d = norm(curves.points[size_t(j)].point - curves.points[size_t(i)].point);
-        const int32_t ahead = (j - i + m) % m;
-        double a = along[size_t(j - first)] - along[size_t(i - first)];
-        if (a < 0) a += length;
-        if (d >= near || a > longest || a <= kPassRatio * d || ahead <= cut_ahead) return;
-        cut_ahead = ahead;
-      });
-      for (int32_t s = 1; s < cut_ahead; ++s) dropped[size_t(first + (i - first + s) % m)] = 1;
-    }
-    for (int32_t i = first; i < end; ++i)
-      if (!dropped[size_t(i)]) out.points.push_back(curves.points[size_t(i)]);
     out.start.push_back(int32_t(out.points.size()));
   }
   return out;
@@ -371,10 +315,8 @@ RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, 
       surface_samples(surface, cumulative, int32_t(std::min(samples_wanted, double(INT32_MAX))), 1);
   work = resampled(work, step, closest);
   for (int iteration = 0; iteration < options.iterations; ++iteration)
-    work = without_needles(
-        resampled(relaxed(work, walls, iteration % 2 == 0 ? samples : std::span<const Vec3>(), box, options.spacing, closest),
-                  step, closest),
-        options.spacing, box);
+    work = resampled(relaxed(work, walls, iteration % 2 == 0 ? samples : std::span<const Vec3>(), box, options.spacing, closest),
+                     step, closest);
   RelaxedCurves out;
   out.curves.points.reserve(work.points.size());
   out.normals.reserve(work.points.size());
