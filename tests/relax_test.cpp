@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <vector>
 
 namespace meander {
@@ -78,6 +79,72 @@ TEST(Relax, EvensTheGapsOfAPlaneCurveWithoutCrossingIt) {
   EXPECT_NEAR(is.gap_median, spacing, 0.1 * spacing);
   EXPECT_GT(is.gap_p5, 0.75 * spacing);
   EXPECT_LT(is.coverage_max, was.coverage_max);
+}
+
+// The nearest pair of points of a closed curve that are other passes of each other
+// (farther apart along it than 1.4 times their distance), by brute force.
+double nearest_other_pass(std::span<const Vec3> c) {
+  const size_t n = c.size();
+  std::vector<double> along(n + 1, 0);
+  for (size_t i = 0; i < n; ++i) along[i + 1] = along[i] + norm(c[(i + 1) % n] - c[i]);
+  double nearest = INFINITY;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      const double d = norm(c[j] - c[i]), a = std::min(along[j] - along[i], along[n] - (along[j] - along[i]));
+      if (a > 1.4 * d) nearest = std::min(nearest, d);
+    }
+  return nearest;
+}
+
+// A needle (a hairpin pinched to a hundredth of a spacing, as grows where the curve
+// moved onto the input jumps across a thin part) is cut off where its arms meet,
+// within a single round, which could only push its arms a quarter of their distance
+// apart.
+TEST(Relax, CutsOffANeedle) {
+  const PolygonMesh square = grid(2000);
+  const double spacing = 0.1;
+  // A circle with a needle half a spacing long sticking out of it.
+  Polylines needle;
+  for (int k = 0; k < 76; ++k) {
+    const double angle = 2 * std::numbers::pi * k / 76;
+    needle.points.push_back({float(0.5 + 0.3 * std::cos(angle)), float(0.5 + 0.3 * std::sin(angle)), 0});
+    if (k == 0) {
+      needle.points.push_back({0.85f, 0.5002f, 0});
+      needle.points.push_back({0.8f, 0.5004f, 0});
+    }
+  }
+  needle.start.push_back(int32_t(needle.points.size()));
+  ASSERT_LT(nearest_other_pass(needle.points), 0.01 * spacing);
+  ASSERT_EQ(crossings(needle.points), 0);
+  const Polylines after = relax_curves(needle, square, ClosestPoints(square), {.spacing = spacing, .iterations = 1}).curves;
+  ASSERT_EQ(after.size(), 1);
+  EXPECT_GT(nearest_other_pass(after.points), 0.2 * spacing);
+  EXPECT_EQ(crossings(after.points), 0);
+}
+
+// A curve whose points the closest point put on the two sides of a part thinner than
+// the spacing (here a circle on a thin disk, half on top and half below) goes round the
+// part's edge between them, not straight through it.
+TEST(Relax, GoesRoundTheEdgeOfAThinPartNotThroughIt) {
+  PolygonMesh disk = sphere(20000);
+  for (Vec3& p : disk.positions) p.z *= 0.1f;
+  const double spacing = 0.05;
+  Polylines circle;
+  for (int k = 0; k < 120; ++k) {
+    const double angle = 2 * std::numbers::pi * k / 120;
+    circle.points.push_back({float(0.95 * std::cos(angle)), float(0.95 * std::sin(angle)), k < 60 ? 0.1f : -0.1f});
+  }
+  circle.start.push_back(120);
+  const ClosestPoints surface(disk);
+  const Polylines on = relax_curves(circle, disk, surface, {.spacing = spacing, .iterations = 0}).curves;
+  ASSERT_EQ(on.size(), 1);
+  double longest = 0, outermost = 0;
+  for (size_t i = 0; i < on.points.size(); ++i) {
+    longest = std::max(longest, norm(on.points[(i + 1) % on.points.size()] - on.points[i]));
+    outermost = std::max(outermost, norm(Vec3{on.points[i].x, on.points[i].y, 0}));
+  }
+  EXPECT_LT(longest, 0.5 * spacing);
+  EXPECT_GT(outermost, 0.98);
 }
 
 TEST(Relax, KeepsEachCurveClosedAndOnItsComponent) {

@@ -271,6 +271,44 @@ TEST(ClosestPoints, NearbyHitWalksToTheClosestPointAround) {
   EXPECT_NEAR(two.nearby_hit({0.52, 0.5, -0.06}, upper).point.z, 0, 1e-9);
 }
 
+// A path between points on the two sides of a thin disk goes round its rim, every point
+// on the surface and about a step from the last; across a large face it goes about
+// straight; none is found where every way is longer than allowed.
+TEST(ClosestPoints, PathGoesRoundTheEdgeOfAThinPart) {
+  PolygonMesh disk = sphere(20000);
+  for (Vec3& p : disk.positions) p.z *= 0.05f;
+  const ClosestPoints surface(disk);
+  const ClosestPoints::Hit top = surface.closest_hit({0.9, 0, 0.1}), bottom = surface.closest_hit({0.9, 0, -0.1});
+  ASSERT_GT(top.point.z, 0);
+  ASSERT_LT(bottom.point.z, 0);
+  const double step = 0.02;
+  const std::vector<ClosestPoints::Hit> way = surface.path(top, bottom, step, 1);
+  ASSERT_FALSE(way.empty());
+  double outermost = 0, longest = 0;
+  const ClosestPoints::Hit* last = &top;
+  for (const ClosestPoints::Hit& h : way) {
+    EXPECT_NEAR(norm(surface.closest(h.point) - h.point), 0, 1e-9);
+    outermost = std::max(outermost, h.point.x);
+    longest = std::max(longest, norm(h.point - last->point));
+    last = &h;
+  }
+  longest = std::max(longest, norm(bottom.point - last->point));
+  EXPECT_GT(outermost, 0.98); // round the rim, at x = 1
+  EXPECT_LT(longest, 1.5 * step);
+  EXPECT_TRUE(surface.path(top, bottom, step, 0.1).empty()); // the way is about 0.2 long
+  // Across the two triangles of a square, near the straight line.
+  const PolygonMesh square = grid(2);
+  const ClosestPoints plane(square);
+  const ClosestPoints::Hit from = plane.closest_hit({0.1, 0.8, 0}), to = plane.closest_hit({0.9, 0.3, 0});
+  ASSERT_NE(from.triangle, to.triangle);
+  const std::vector<ClosestPoints::Hit> straight = plane.path(from, to, 0.05, 2);
+  ASSERT_EQ(straight.size(), 18u); // 0.94 long
+  for (const ClosestPoints::Hit& h : straight) {
+    const Vec3d along = to.point - from.point;
+    EXPECT_LT(norm(cross(h.point - from.point, along)) / norm(along), 0.05);
+  }
+}
+
 // Each polygon fanned from its first vertex, as the writers triangulate it.
 PolygonMesh fanned(const PolygonMesh& mesh) {
   PolygonMesh out;

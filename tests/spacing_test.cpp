@@ -9,6 +9,7 @@
 #include "meander/error.h"
 #include "meander/evenness.h"
 #include "meander/io.h"
+#include "meander/jobs.h"
 #include "meander/pipeline.h"
 #include "meander/remesh.h"
 #include "meander/shapes.h"
@@ -146,11 +147,12 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SpacingOnRealMesh,
 // for time; docs/density.md gives every mesh at every spacing. Left out where measured
 // outside the targets, as the issue allows for parts thinner than two spacings (such a
 // part meets its other side as a neighbouring pass):
-//   at 1/30: the bunnies (ears), the three Spots (ears and horns), fertility (arms),
-//     camelhead (ears), genus3hexa1 (the bars between its holes), triple_vierbein (cut
-//     by repair into narrow strips), and by a little (CV 0.146) fandisk and conrod;
-//   at 1/60: camelhead, genus3hexa1, spot_control_mesh (the faceted 180-face cage) and
-//     triple_vierbein; spot_control_mesh is at the limit at 1/120 (CV 0.120).
+//   at 1/30: stanford-bunny_original_holes (ears and holes), spot_control_mesh (the
+//     faceted 180-face cage), fertility (arms), camelhead (ears), genus3hexa1 (the bars
+//     between its holes), triple_vierbein (cut by repair into narrow strips), and
+//     platonic_shelf at the limit (CV 0.121: the curve goes over its solids' edges
+//     instead of through them);
+//   at 1/60: camelhead, genus3hexa1, spot_control_mesh and triple_vierbein.
 // Coverage: no surface point farther than 1.3 spacings from the curve (measured 0.78 to
 // 1.23; the issue asks for 0.8).
 struct EvennessCase {
@@ -186,13 +188,29 @@ INSTANTIATE_TEST_SUITE_P(
                       EvennessCase{"eight.off", {30, 60}}, EvennessCase{"beveledcube.obj", {30, 60}},
                       EvennessCase{"face.obj", {30, 60}}, EvennessCase{"grid.off", {30, 60}},
                       EvennessCase{"degtri_four.off", {30, 60}}, EvennessCase{"moebius.obj", {30, 60, 120}},
-                      EvennessCase{"bunny_closed.off", {60}}, EvennessCase{"stanford-bunny_original_holes.obj", {60}},
-                      EvennessCase{"spot_triangulated.obj", {60}}, EvennessCase{"spot_quadrangulated.obj", {60}},
-                      EvennessCase{"fertility.off", {60}}, EvennessCase{"fandisk_quads.off", {60}},
-                      EvennessCase{"conrod.stl", {60}}, EvennessCase{"hourglass_ico.obj", {30, 60}},
-                      EvennessCase{"platonic_shelf.obj", {30, 60}}, EvennessCase{"camelhead.off", {120}},
+                      EvennessCase{"bunny_closed.off", {30, 60}}, EvennessCase{"stanford-bunny_original_holes.obj", {60}},
+                      EvennessCase{"spot_triangulated.obj", {30, 60}}, EvennessCase{"spot_quadrangulated.obj", {30, 60}},
+                      EvennessCase{"fertility.off", {60}}, EvennessCase{"fandisk_quads.off", {30, 60}},
+                      EvennessCase{"conrod.stl", {30, 60}}, EvennessCase{"hourglass_ico.obj", {30, 60}},
+                      EvennessCase{"platonic_shelf.obj", {60}}, EvennessCase{"camelhead.off", {120}},
                       EvennessCase{"genus3hexa1.obj", {120}}, EvennessCase{"triple_vierbein.obj", {120}}),
     [](const auto& param_info) { return test_name(param_info.param.file); });
+
+// A wire at a spacing on a scan with parts thinner than the spacing (the bunny's ears at
+// 100 mm, 3 mm apart): the curve goes round their edges rather than straight through,
+// needles are cut, and the sections do not twist where it still crosses one, so the
+// wire keeps most of its automatic radius (a fifth of the spacing) and does not cross
+// itself. It had a radius of a micrometre, and crossed itself at any radius.
+TEST(RealMeshes, AWireAtASpacingKeepsItsRadiusOnAScanWithThinParts) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const PolygonMesh mesh = repair(read_mesh(shared_meshes() / "bunny_closed.off"), "bunny_closed.off").mesh;
+  const WireJob job{.curve = CurveJob{.model_size = 100, .spacing = 3}};
+  const WireResult wire = make_wire(make_curve(mesh, wire_curve_job(job)), job);
+  EXPECT_GT(wire.radius, 0.4);
+  EXPECT_TRUE(wire.report.watertight);
+  EXPECT_TRUE(wire.report.self_intersections_checked);
+  EXPECT_FALSE(wire.report.self_intersecting);
+}
 
 TEST(CliSpacing, BadValuesExitWithTwoAndWriteNothing) {
   const auto dir = output_dir();

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace meander {
 
@@ -39,6 +40,15 @@ public:
   // when the walk would be longer than 64 faces, which is left to the tree, or `from`
   // has no triangle. O(faces crossed). Deterministic.
   Hit nearby_hit(Vec3d p, const Hit& from) const;
+  // Points about `step` apart, each with the triangle it lies on, along a short way
+  // across the surface from a to b (neither included): for consecutive points of a curve
+  // that the closest point put on two sides of a part thinner than the spacing, where the
+  // segment between them would cut through. The shortest path over the vertices and
+  // points about a step apart on the edges, from a's face to b's, within a step of the
+  // shortest way on faces larger than a step. Empty when there is none shorter than
+  // `longest`. O(N log N) for the N such points whose way through them from a to b could
+  // be shorter than `longest`. Deterministic.
+  std::vector<Hit> path(const Hit& a, const Hit& b, double step, double longest) const;
   // Moves each point to the closest point of the surface, and sets normals[i] (if
   // `normals` is not empty, as long as `points`) to the normal there: in parallel, and the
   // same result whatever the number of threads.

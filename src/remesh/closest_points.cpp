@@ -9,7 +9,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <queue>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -209,6 +211,113 @@ ClosestPoints::Hit ClosestPoints::nearby_hit(Vec3d p, const Hit& from) const {
     std::tie(q, region) = there;
   }
   return closest_hit(p, hit_on(t, q));
+}
+
+std::vector<ClosestPoints::Hit> ClosestPoints::path(const Hit& a, const Hit& b, double step, double longest) const {
+  const Triangles& triangles = tree_->triangles;
+  const auto valid = [&](const Hit& h) { return h.triangle >= 0 && size_t(h.triangle) < triangles.corners.size(); };
+  if (!valid(a) || !valid(b) || !(step > 0)) return {};
+  // The way's corners: a, then points on the faces' edges, then b, and the triangle each
+  // piece crosses. The shortest path (A*, the straight distance to b as the estimate)
+  // over the vertices and points on the edges about a step apart (so that faces larger
+  // than a step are crossed about straight), each joined to the others of the faces it
+  // lies on.
+  std::vector<Vec3d> way{a.point};
+  std::vector<int32_t> across;
+  if (a.triangle != b.triangle) {
+    // A vertex {v, -1, 0}, or point k of the edge from u to w > u, {u, w, k}.
+    using Node = std::array<int32_t, 3>;
+    auto at = [&](int32_t v) { return to_double(triangles.positions[size_t(v)]); };
+    auto pieces = [&](int32_t u, int32_t w) { return std::max(1, int(std::ceil(norm(at(w) - at(u)) / step))); };
+    auto position = [&](const Node& n) {
+      return n[1] < 0 ? at(n[0]) : at(n[0]) + (at(n[1]) - at(n[0])) * (double(n[2]) / pieces(n[0], n[1]));
+    };
+    // Every node on triangle t's edges, to `visit`.
+    auto for_each_node = [&](int32_t t, auto&& visit) {
+      const std::array<int32_t, 3>& v = triangles.corners[size_t(t)];
+      for (int e = 0; e < 3; ++e) {
+        const int32_t u = std::min(v[size_t(e)], v[size_t(e + 1) % 3]), w = std::max(v[size_t(e)], v[size_t(e + 1) % 3]);
+        visit(Node{v[size_t(e)], -1, 0});
+        for (int k = 1; k < pieces(u, w); ++k) visit(Node{u, w, k});
+      }
+    };
+    // The triangles a node lies on.
+    auto for_each_triangle = [&](const Node& n, auto&& visit) {
+      for (int32_t k = triangles.around_start[size_t(n[0])]; k < triangles.around_start[size_t(n[0]) + 1]; ++k) {
+        const int32_t t = triangles.around[size_t(k)];
+        const std::array<int32_t, 3>& v = triangles.corners[size_t(t)];
+        if (n[1] < 0 || std::find(v.begin(), v.end(), n[1]) != v.end()) visit(t);
+      }
+    };
+    struct Reached {
+      double distance;
+      Node before;
+      int32_t triangle; // that the piece from `before` crosses
+    };
+    struct Hash {
+      size_t operator()(const Node& n) const {
+        return std::hash<uint64_t>()((uint64_t(uint32_t(n[0])) << 32 | uint32_t(n[1])) * 31 + uint32_t(n[2]));
+      }
+    };
+    std::unordered_map<Node, Reached, Hash> reached;
+    // (distance + the straight distance left, distance, node)
+    using Entry = std::tuple<double, double, Node>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    constexpr Node none{-1, -1, -1};
+    auto offer = [&](const Node& n, double d, const Node& from, int32_t t) {
+      const double estimate = d + norm(b.point - position(n));
+      if (estimate >= longest) return;
+      if (auto [it, added] = reached.try_emplace(n, Reached{d, from, t}); added || d < it->second.distance) {
+        it->second = {d, from, t};
+        queue.push({estimate, d, n});
+      }
+    };
+    for_each_node(a.triangle, [&](const Node& n) { offer(n, norm(position(n) - a.point), none, a.triangle); });
+    double shortest = longest;
+    Node last = none;
+    while (!queue.empty()) {
+      const auto [estimate, d, n] = queue.top();
+      queue.pop();
+      if (estimate >= shortest) break;
+      if (d > reached[n].distance) continue;
+      const Vec3d p = position(n);
+      for_each_triangle(n, [&](int32_t t) {
+        if (t == b.triangle)
+          if (const double total = d + norm(b.point - p); total < shortest) {
+            shortest = total;
+            last = n;
+          }
+        for_each_node(t, [&](const Node& m) { offer(m, d + norm(position(m) - p), n, t); });
+      });
+    }
+    if (last == none) return {};
+    for (Node n = last; n != none; n = reached[n].before) {
+      way.push_back(position(n));
+      across.push_back(reached[n].triangle);
+    }
+    std::reverse(way.begin() + 1, way.end());
+    std::reverse(across.begin(), across.end());
+  }
+  way.push_back(b.point);
+  across.push_back(b.triangle);
+  double length = 0;
+  for (size_t i = 1; i < way.size(); ++i) length += norm(way[i] - way[i - 1]);
+  // Points at equal steps along the way.
+  const int pieces = std::max(1, int(std::floor(length / step + 0.5)));
+  std::vector<Hit> points;
+  size_t segment = 1;
+  double before = 0; // the way's length up to corner segment - 1
+  for (int m = 1; m < pieces; ++m) {
+    const double s = length * m / pieces;
+    while (segment + 1 < way.size() && before + norm(way[segment] - way[segment - 1]) < s) {
+      before += norm(way[segment] - way[segment - 1]);
+      ++segment;
+    }
+    const double piece = norm(way[segment] - way[segment - 1]);
+    const Vec3d p = way[segment - 1] + (way[segment] - way[segment - 1]) * (piece > 0 ? (s - before) / piece : 0.0);
+    points.push_back(hit_on(across[segment - 1], p));
+  }
+  return points;
 }
 
 void ClosestPoints::project(std::span<Vec3> points, std::span<Vec3> normals) const {

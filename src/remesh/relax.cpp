@@ -51,6 +51,16 @@ constexpr int kSmoothing = 8;
 constexpr double kPocket = 0.5;
 constexpr double kPull = 1.5;
 constexpr double kSamples = 8;
+// A needle: a hairpin pinched until its arms lie nearer than kNeedle spacings, within
+// kNeedleLength spacings along the curve. It grows where the curve moved onto the input
+// jumps across a thin part that the even mesh strayed from, and would leave a wire no
+// room; it is cut off where its arms meet every round (cut only at the end, the pockets
+// it left stayed open).
+constexpr double kNeedle = 0.25;
+constexpr double kNeedleLength = 4;
+// A gap between consecutive points is bridged along the surface by a way at most this
+// many times as long.
+constexpr double kDetour = 3;
 
 Vec3d normalized(Vec3d v) {
   const double length = norm(v);
@@ -83,10 +93,29 @@ std::vector<Vec3> boundary_points(const PolygonMesh& surface, double step) {
 // smaller than the spacing) keeps its points, which would otherwise be too few to close.
 Curves resampled(const Curves& curves, double step, const ClosestPoints& closest) {
   Curves out;
+  // The points between a and b: the closest points of the chord's, a step apart (a
+  // point within half a step of the one before is left out), or, where those leave a gap
+  // (a chord across a part thinner than the spacing, whose closest points lie on its two
+  // sides), points along the surface's way round the part's edge.
+  std::vector<ClosestPoints::Hit> chord;
   auto fill = [&](const ClosestPoints::Hit& a, const ClosestPoints::Hit& b, double d) {
     const int pieces = int(std::floor(d / step + 0.5));
-    for (int m = 1; m < pieces; ++m)
-      out.points.push_back(closest.closest_hit(a.point + (b.point - a.point) * (double(m) / pieces), a));
+    if (pieces < 2) return;
+    chord.clear();
+    double widest = 0;
+    const ClosestPoints::Hit* last = &a;
+    for (int m = 1; m < pieces; ++m) {
+      const ClosestPoints::Hit h = closest.closest_hit(a.point + (b.point - a.point) * (double(m) / pieces), *last);
+      const double gap = norm(h.point - last->point);
+      if (gap < 0.5 * step) continue;
+      widest = std::max(widest, gap);
+      chord.push_back(h);
+      last = &chord.back();
+    }
+    if (std::max(widest, norm(b.point - last->point)) > 2 * step)
+      if (std::vector<ClosestPoints::Hit> way = closest.path(a, b, step, kDetour * d); !way.empty()) chord = std::move(way);
+    while (!chord.empty() && norm(b.point - chord.back().point) < 0.5 * step) chord.pop_back();
+    out.points.insert(out.points.end(), chord.begin(), chord.end());
   };
   for (int32_t k = 0; k < curves.size(); ++k) {
     const int32_t first = curves.start[size_t(k)], end = curves.start[size_t(k) + 1];
@@ -123,8 +152,8 @@ struct Walls {
   std::vector<Vec3d> by_rank;
 };
 
-// One move of every point toward the middle of its neighbouring passes. `box` holds the
-// surface, with a cell of margin.
+// One move of every point toward the middle of its neighbouring passes, without the
+// points of needles. `box` holds the surface, with a cell of margin.
 Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> samples, const Box3& box, double spacing,
                const ClosestPoints& closest) {
   const double reach = kReach * spacing;
@@ -168,6 +197,9 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
   // of its neighbouring passes, and the most it may move.
   std::vector<Vec3d> across(n);
   std::vector<double> centre(n), limit(n);
+  // The point farthest ahead along the curve that closes a needle with each point (or
+  // the point itself).
+  std::vector<int32_t> needle_end(n);
   auto neighbours = [&](size_t i) {
     const int32_t k = curve_of[i], first = curves.start[size_t(k)], end = curves.start[size_t(k) + 1];
     return std::pair(size_t(int32_t(i) == first ? end - 1 : int32_t(i) - 1),
@@ -181,6 +213,8 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       across[i] = normalized(cross(normal, at[after] - at[before]));
       double nearest = reach, plus = reach, minus = reach;
       bool plus_bend = false, minus_bend = false;
+      double needle_ahead = 0;
+      needle_end[i] = int32_t(i);
       auto pass = [&](Vec3d q, double distance_as) {
         const double side = dot(q - p, across[i]);
         (side > 0 ? plus : minus) = std::min(side > 0 ? plus : minus, distance_as);
@@ -195,6 +229,11 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
         if (near.curve == k) {
           const double gone = std::abs(along[i] - near.along);
           const double a = std::min(gone, length[size_t(k)] - gone);
+          const double ahead = near.along >= along[i] ? near.along - along[i] : near.along + length[size_t(k)] - along[i];
+          if (d < kNeedle * spacing && ahead <= kNeedleLength * spacing && ahead > kPassRatio * d && ahead > needle_ahead) {
+            needle_ahead = ahead;
+            needle_end[i] = near.index;
+          }
           if (a <= kPassRatio * d) {
             // The inside of a hairpin: the curve's own bend, not a hole.
             const double side = dot(q - p, across[i]);
@@ -265,19 +304,36 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
     });
     centre.swap(smoothed);
   }
-  Curves out;
-  out.start = curves.start;
-  out.points.resize(n);
+  // Needles are cut in order along each curve, the points between a point and its
+  // needle's end dropped; a curve a few needles long is left as it is, lest a cut take
+  // most of it.
+  std::vector<uint8_t> kept(n, 1);
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    if (length[size_t(k)] < 4 * kNeedleLength * spacing) continue;
+    const int32_t first = curves.start[size_t(k)], m = curves.start[size_t(k) + 1] - first;
+    for (int32_t i = first; i < first + m; ++i)
+      if (kept[size_t(i)] && needle_end[size_t(i)] != i)
+        for (int32_t j = (i - first + 1) % m; first + j != needle_end[size_t(i)]; j = (j + 1) % m) kept[size_t(first + j)] = 0;
+  }
+  std::vector<ClosestPoints::Hit> moved(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
+      if (!kept[i]) continue;
       const auto [before, after] = neighbours(i);
       const Vec3d p = at[i];
       const Vec3d middle = (at[before] + at[after]) * 0.5;
       const double move = std::clamp(centre[i] + kFairing * dot(middle - p, across[i]), -limit[i], limit[i]);
-      out.points[i] = closest.nearby_hit(p + across[i] * move, curves.points[i]);
-      if (out.points[i].normal == Vec3d{}) out.points[i].normal = curves.points[i].normal;
+      moved[i] = closest.nearby_hit(p + across[i] * move, curves.points[i]);
+      if (moved[i].normal == Vec3d{}) moved[i].normal = curves.points[i].normal;
     }
   });
+  Curves out;
+  out.points.reserve(n);
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    for (int32_t i = curves.start[size_t(k)]; i < curves.start[size_t(k) + 1]; ++i)
+      if (kept[size_t(i)]) out.points.push_back(moved[size_t(i)]);
+    out.start.push_back(int32_t(out.points.size()));
+  }
   return out;
 }
 

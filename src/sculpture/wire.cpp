@@ -212,7 +212,16 @@ Sweep sweep_along(const Polylines& centre, std::span<const Vec3> normals) {
       if (const Vec3 t = section_normal(points[size_t((i + m - 1) % m)], points[size_t(i)], points[size_t((i + 1) % m)]);
           norm(t) > 0)
         tangent = t;
-      if (const Vec3 nrm = normalized(up[i] - tangent * float(dot(up[i], tangent))); norm(nrm) > 0) normal = nrm;
+      Vec3 want = normalized(up[i] - tangent * float(dot(up[i], tangent)));
+      // A section turned more than 60 degrees from the last one twists the tube between
+      // them into itself (a segment straight across a thin part, along which the
+      // surface's normal turns over): it turns half way toward the surface's normal.
+      if (const Vec3 carried = normalized(normal - tangent * float(dot(normal, tangent)));
+          i > 0 && norm(carried) > 0 && dot(want, carried) < 0.5f) {
+        const Vec3 half = normalized(carried + want);
+        want = norm(half) > 0 ? half : carried;
+      }
+      if (norm(want) > 0) normal = want;
       up[i] = normal;
       sweep.binormal[size_t(first + i)] = cross(tangent, normal);
     }
