@@ -122,6 +122,25 @@ TEST(Relax, CutsOffANeedle) {
   EXPECT_EQ(crossings(after.points), 0);
 }
 
+// A curve that crosses itself (as the closest point folds a curve made on an even mesh
+// that strays from the input by more than the gap between passes) is undone within a
+// round, which by its moves alone would keep the crossing: still one closed curve.
+TEST(Relax, UndoesACrossing) {
+  const PolygonMesh square = grid(2000);
+  const double spacing = 0.1;
+  // A figure eight, crossing at its middle: there neither pass may move.
+  Polylines eight;
+  for (int k = 0; k < 120; ++k) {
+    const double angle = 2 * std::numbers::pi * (k + 0.5) / 120;
+    eight.points.push_back({float(0.5 + 0.35 * std::cos(angle)), float(0.5 + 0.35 * std::sin(angle) * std::cos(angle)), 0});
+  }
+  eight.start.push_back(120);
+  ASSERT_EQ(crossings(eight.points), 1);
+  const Polylines after = relax_curves(eight, square, ClosestPoints(square), {.spacing = spacing, .iterations = 1}).curves;
+  ASSERT_EQ(after.size(), 1);
+  EXPECT_EQ(crossings(after.points), 0);
+}
+
 // A curve whose points the closest point put on the two sides of a part thinner than
 // the spacing (here a circle on a thin disk, half on top and half below) goes round the
 // part's edge between them, not straight through it.

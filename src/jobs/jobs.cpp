@@ -57,10 +57,12 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
   if (job.method == WireMethod::constant) {
     // A curve moved onto the input surface (CurveJob::spacing) is swept where it lies, by
     // default a fifth of the spacing thick, so that neighbouring passes stay clear by
-    // more than half a spacing, or less where the curve comes nearer.
+    // more than half a spacing, or less where the curve comes nearer or bends tighter
+    // (a tenth less than where the tube would touch itself there).
     ConstantWireOptions options = constant_options(job);
     if (!curve.normals.empty() && !options.radius && job.curve.spacing)
-      if (const double clear = max_wire_radius(curve.curves, 4); clear > 0) options.radius = std::min(0.2 * *job.curve.spacing, clear);
+      if (const double clear = max_wire_radius(curve.curves, 4); clear > 0)
+        options.radius = std::min(0.2 * *job.curve.spacing, 0.9 * clear);
     ConstantWire made = curve.normals.empty() ? constant_wire(curve.quads, curve.cycle, options)
                                               : constant_wire(curve.curves, curve.normals, options);
     if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");

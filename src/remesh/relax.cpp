@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +62,9 @@ constexpr double kNeedleLength = 4;
 // A gap between consecutive points is bridged along the surface by a way at most this
 // many times as long.
 constexpr double kDetour = 3;
+// Segments longer than this many steps are taken to cross a thin part, and not looked at
+// for crossings.
+constexpr double kLongest = 2;
 
 Vec3d normalized(Vec3d v) {
   const double length = norm(v);
@@ -87,12 +91,13 @@ std::vector<Vec3> boundary_points(const PolygonMesh& surface, double step) {
   return points;
 }
 
-// Each curve with points about `step` apart: a stretch longer than 1.5 steps gets points
+// `out`: each curve with points about `step` apart: a stretch longer than 1.5 steps gets points
 // between (on the surface), and a point nearer than half a step to the last one kept is
 // dropped, so the points keep their order. A curve shorter than 4 steps (on a component
 // smaller than the spacing) keeps its points, which would otherwise be too few to close.
-Curves resampled(const Curves& curves, double step, const ClosestPoints& closest) {
-  Curves out;
+void resample(const Curves& curves, double step, const ClosestPoints& closest, Curves& out) {
+  out.points.clear();
+  out.start.assign(1, 0);
   // The points between a and b: the closest points of the chord's, a step apart (a
   // point within half a step of the one before is left out), or, where those leave a gap
   // (a chord across a part thinner than the spacing, whose closest points lie on its two
@@ -143,7 +148,23 @@ Curves resampled(const Curves& curves, double step, const ClosestPoints& closest
     fill(last, p, norm(p.point - last.point));
     out.start.push_back(int32_t(out.points.size()));
   }
-  return out;
+}
+
+// Whether segments a0-a1 and b0-b1, with the surface's normals na and nb at a0 and b0,
+// cross on the surface: seen along the normals' mean, they cross, and there they are
+// less than `near` apart. Passes on two sides of a thin part (normals more than 60
+// degrees apart) do not.
+bool cross_on_surface(Vec3d a0, Vec3d a1, Vec3d b0, Vec3d b1, Vec3d na, Vec3d nb, double near) {
+  if (dot(na, nb) < 0.5) return false;
+  const Vec3d n = normalized(na + nb);
+  auto flat = [&](Vec3d v) { return v - n * dot(v, n); };
+  const Vec3d u = flat(a1 - a0), v = flat(b1 - b0), w = flat(b0 - a0);
+  const double denominator = dot(cross(u, v), n);
+  if (denominator == 0) return false;
+  // a0 + s u meets b0 + t v.
+  const double s = dot(cross(w, v), n) / denominator, t = dot(cross(w, u), n) / denominator;
+  if (!(s > 0 && s < 1 && t > 0 && t < 1)) return false;
+  return norm((a0 + (a1 - a0) * s) - (b0 + (b1 - b0) * t)) < near;
 }
 
 // The boundary of the surface, in a grid of cells `reach` wide, its points by rank.
@@ -152,42 +173,73 @@ struct Walls {
   std::vector<Vec3d> by_rank;
 };
 
-// One move of every point toward the middle of its neighbouring passes, without the
-// points of needles. `box` holds the surface, with a cell of margin.
-Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> samples, const Box3& box, double spacing,
-               const ClosestPoints& closest) {
+// A point of the curves as the neighbour search reads it, by rank in the grid.
+struct Near {
+  Vec3d normal;
+  double along;
+  int32_t curve, index;
+};
+
+// What a round works in, kept from round to round: allocated anew, these arrays were
+// mapped and faulted in again every round (a third of the time on a 1M-face sphere).
+struct Round {
+  std::vector<Vec3d> at, point_by_rank, across;
+  std::vector<Vec3> cells;
+  std::vector<int32_t> curve_of, needle_end, crossing, nearest_of, order;
+  std::vector<double> along, segment, length, centre, limit, sample_distance, pull, smoothed;
+  std::vector<Near> by_rank;
+  std::vector<uint8_t> kept;
+  std::vector<ClosestPoints::Hit> moved;
+};
+
+// `out`: one move of every point toward the middle of its neighbouring passes, without the
+// points of needles and without crossings of a curve with itself. Moved onto the input
+// by the closest point, a curve made on the even mesh folds over itself where the mesh
+// strays from the input by more than the gap between passes (fertility's arm at 1/30),
+// and the moves, which keep passes from crossing, would keep the crossing; rarely, a
+// stretch filled in across a gap crosses another pass. Where segments i and j > i of a
+// curve cross, its points i + 1 to j are reversed (a 2-opt move): still one closed curve,
+// without that crossing. `box` holds the surface, with a cell of margin.
+void relax(const Curves& curves, const Walls& walls, std::span<const Vec3> samples, const Box3& box, double spacing,
+           const ClosestPoints& closest, Round& round, Curves& out) {
   const double reach = kReach * spacing;
   const double bend = kBend * spacing;
+  const double step = spacing / kStepsPerSpacing;
   const size_t n = curves.points.size();
-  std::vector<Vec3d> at(n);
-  std::vector<Vec3> cells(n);
+  std::vector<Vec3d>& at = round.at;
+  std::vector<Vec3>& cells = round.cells;
+  at.resize(n);
+  cells.resize(n);
   for (size_t i = 0; i < n; ++i) {
     at[i] = curves.points[i].point;
     cells[i] = to_float(at[i]);
   }
   const PointGrid grid(cells, reach, box);
-  // Each point's curve, and its distance along it from the curve's first point.
-  std::vector<int32_t> curve_of(n);
-  std::vector<double> along(n), length(size_t(curves.size()));
+  // Each point's curve, its distance along it from the curve's first point, and its
+  // segment's length, to the next point.
+  std::vector<int32_t>& curve_of = round.curve_of;
+  std::vector<double>&along = round.along, &segment = round.segment, &length = round.length;
+  curve_of.resize(n);
+  along.resize(n);
+  segment.resize(n);
+  length.resize(size_t(curves.size()));
   for (int32_t k = 0; k < curves.size(); ++k) {
     double s = 0;
-    for (int32_t i = curves.start[size_t(k)]; i < curves.start[size_t(k) + 1]; ++i) {
-      if (i > curves.start[size_t(k)]) s += norm(at[size_t(i)] - at[size_t(i) - 1]);
+    const int32_t first = curves.start[size_t(k)], last = curves.start[size_t(k) + 1] - 1;
+    for (int32_t i = first; i <= last; ++i) {
+      segment[size_t(i)] = norm(at[size_t(i == last ? first : i + 1)] - at[size_t(i)]);
       curve_of[size_t(i)] = k;
       along[size_t(i)] = s;
+      s += segment[size_t(i)];
     }
-    const int32_t first = curves.start[size_t(k)], last = curves.start[size_t(k) + 1] - 1;
-    length[size_t(k)] = s + norm(at[size_t(first)] - at[size_t(last)]);
+    length[size_t(k)] = s;
   }
   // By rank in the grid: the points apart from the rest, which only the few within
   // reach of a query need.
-  struct Near {
-    Vec3d normal;
-    double along;
-    int32_t curve, index;
-  };
-  std::vector<Vec3d> point_by_rank(n);
-  std::vector<Near> by_rank(n);
+  std::vector<Vec3d>& point_by_rank = round.point_by_rank;
+  std::vector<Near>& by_rank = round.by_rank;
+  point_by_rank.resize(n);
+  by_rank.resize(n);
   for (size_t rank = 0; rank < n; ++rank) {
     const size_t i = size_t(grid.ids()[rank]);
     point_by_rank[rank] = at[i];
@@ -195,11 +247,16 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
   }
   // Each point's direction across the curve on the surface, the move toward the middle
   // of its neighbouring passes, and the most it may move.
-  std::vector<Vec3d> across(n);
-  std::vector<double> centre(n), limit(n);
+  std::vector<Vec3d>& across = round.across;
+  std::vector<double>&centre = round.centre, &limit = round.limit;
+  across.resize(n);
+  centre.resize(n);
+  limit.resize(n);
   // The point farthest ahead along the curve that closes a needle with each point (or
-  // the point itself).
-  std::vector<int32_t> needle_end(n);
+  // the point itself), and the first segment after each point's that crosses it (or -1).
+  std::vector<int32_t>&needle_end = round.needle_end, &crossing = round.crossing;
+  needle_end.resize(n);
+  crossing.resize(n);
   auto neighbours = [&](size_t i) {
     const int32_t k = curve_of[i], first = curves.start[size_t(k)], end = curves.start[size_t(k) + 1];
     return std::pair(size_t(int32_t(i) == first ? end - 1 : int32_t(i) - 1),
@@ -258,11 +315,33 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       limit[i] = nearest / 4;
     }
   });
+  // The first segment after each point's that crosses it, looked for only where another
+  // pass comes within two segments (limit is a quarter of the nearest one's distance).
+  // Segments longer than kLongest steps, left across thin parts, are not looked at.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      crossing[i] = -1;
+      const size_t after = neighbours(i).second;
+      if (4 * limit[i] >= segment[i] + kLongest * step || segment[i] > kLongest * step) continue;
+      grid.for_each_near(cells[i], [&](size_t rank) {
+        const int32_t j = by_rank[rank].index;
+        if (j <= int32_t(i) + 1 || by_rank[rank].curve != curve_of[i] || segment[size_t(j)] > kLongest * step ||
+            (crossing[i] >= 0 && j >= crossing[i]))
+          return;
+        const size_t after_j = neighbours(size_t(j)).second;
+        if (after_j != i && cross_on_surface(at[i], at[after], at[size_t(j)], at[after_j], curves.points[i].normal,
+                                             by_rank[rank].normal, step))
+          crossing[i] = j;
+      });
+    }
+  });
   // Pockets: a surface sample farther than kPocket spacings from every point pulls the
   // nearest one (the lowest numbered of equals) toward it.
   const double pocket = kPocket * spacing;
-  std::vector<int32_t> nearest_of(samples.size(), -1);
-  std::vector<double> sample_distance(samples.size(), 0);
+  std::vector<int32_t>& nearest_of = round.nearest_of;
+  std::vector<double>& sample_distance = round.sample_distance;
+  nearest_of.assign(samples.size(), -1);
+  sample_distance.assign(samples.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t s = range.begin(); s < range.end(); ++s) {
       const Vec3d q = to_double(samples[s]);
@@ -284,7 +363,8 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       sample_distance[s] = std::sqrt(best);
     }
   });
-  std::vector<double> pull(n, 0);
+  std::vector<double>& pull = round.pull;
+  pull.assign(n, 0);
   for (size_t s = 0; s < samples.size(); ++s) {
     const int32_t j = nearest_of[s];
     if (j < 0) continue;
@@ -294,8 +374,9 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
   }
   for (size_t i = 0; i < n; ++i) centre[i] += kPull * pull[i];
   // Points of a pass move together.
-  std::vector<double> smoothed(n);
-  for (int round = 0; round < kSmoothing; ++round) {
+  std::vector<double>& smoothed = round.smoothed;
+  smoothed.resize(n);
+  for (int pass = 0; pass < kSmoothing; ++pass) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t i = range.begin(); i < range.end(); ++i) {
         const auto [before, after] = neighbours(i);
@@ -307,7 +388,8 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
   // Needles are cut in order along each curve, the points between a point and its
   // needle's end dropped; a curve a few needles long is left as it is, lest a cut take
   // most of it.
-  std::vector<uint8_t> kept(n, 1);
+  std::vector<uint8_t>& kept = round.kept;
+  kept.assign(n, 1);
   for (int32_t k = 0; k < curves.size(); ++k) {
     if (length[size_t(k)] < 4 * kNeedleLength * spacing) continue;
     const int32_t first = curves.start[size_t(k)], m = curves.start[size_t(k) + 1] - first;
@@ -315,7 +397,8 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       if (kept[size_t(i)] && needle_end[size_t(i)] != i)
         for (int32_t j = (i - first + 1) % m; first + j != needle_end[size_t(i)]; j = (j + 1) % m) kept[size_t(first + j)] = 0;
   }
-  std::vector<ClosestPoints::Hit> moved(n);
+  std::vector<ClosestPoints::Hit>& moved = round.moved;
+  moved.resize(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
       if (!kept[i]) continue;
@@ -327,14 +410,27 @@ Curves relaxed(const Curves& curves, const Walls& walls, std::span<const Vec3> s
       if (moved[i].normal == Vec3d{}) moved[i].normal = curves.points[i].normal;
     }
   });
-  Curves out;
-  out.points.reserve(n);
+  // Crossings are undone in order, each reversal apart from the others (the rest wait
+  // for the next round) and between kept points.
+  std::vector<int32_t>& order = round.order;
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0);
+  int32_t free_from = 0;
+  for (int32_t i = 0; i < int32_t(n); ++i) {
+    const int32_t j = crossing[size_t(i)];
+    if (j < 0 || i < free_from || !kept[size_t(i)] || !kept[neighbours(size_t(i)).second] || !kept[size_t(j)] ||
+        !kept[neighbours(size_t(j)).second])
+      continue;
+    std::reverse(order.begin() + i + 1, order.begin() + j + 1);
+    free_from = j + 1;
+  }
+  out.points.clear();
+  out.start.assign(1, 0);
   for (int32_t k = 0; k < curves.size(); ++k) {
     for (int32_t i = curves.start[size_t(k)]; i < curves.start[size_t(k) + 1]; ++i)
-      if (kept[size_t(i)]) out.points.push_back(moved[size_t(i)]);
+      if (kept[size_t(order[size_t(i)])]) out.points.push_back(moved[size_t(order[size_t(i)])]);
     out.start.push_back(int32_t(out.points.size()));
   }
-  return out;
 }
 
 } // namespace
@@ -369,10 +465,14 @@ RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, 
   const double samples_wanted = cumulative.empty() ? 0 : kSamples * cumulative.back() / (options.spacing * options.spacing);
   const std::vector<Vec3> samples =
       surface_samples(surface, cumulative, int32_t(std::min(samples_wanted, double(INT32_MAX))), 1);
-  work = resampled(work, step, closest);
-  for (int iteration = 0; iteration < options.iterations; ++iteration)
-    work = resampled(relaxed(work, walls, iteration % 2 == 0 ? samples : std::span<const Vec3>(), box, options.spacing, closest),
-                     step, closest);
+  Curves moved;
+  Round round;
+  resample(work, step, closest, moved);
+  std::swap(work, moved);
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    relax(work, walls, iteration % 2 == 0 ? samples : std::span<const Vec3>(), box, options.spacing, closest, round, moved);
+    resample(moved, step, closest, work);
+  }
   RelaxedCurves out;
   out.curves.points.reserve(work.points.size());
   out.normals.reserve(work.points.size());
