@@ -148,11 +148,10 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SpacingOnRealMesh,
 // outside the targets, as the issue allows for parts thinner than two spacings (such a
 // part meets its other side as a neighbouring pass):
 //   at 1/30: stanford-bunny_original_holes (ears and holes), spot_control_mesh (the
-//     faceted 180-face cage), fertility (arms), camelhead (ears), genus3hexa1 (the bars
-//     between its holes), triple_vierbein (cut by repair into narrow strips), and
-//     platonic_shelf at the limit (CV 0.121: the curve goes over its solids' edges
-//     instead of through them);
-//   at 1/60: camelhead, genus3hexa1, spot_control_mesh and triple_vierbein.
+//     faceted 180-face cage), camelhead (ears), triple_vierbein (cut by repair into
+//     narrow strips), and platonic_shelf at the limit (CV 0.121: the curve goes over
+//     its solids' edges instead of through them);
+//   at 1/60: camelhead, spot_control_mesh and triple_vierbein.
 // Coverage: no surface point farther than 1.3 spacings from the curve (measured 0.78 to
 // 1.23; the issue asks for 0.8).
 struct EvennessCase {
@@ -190,10 +189,10 @@ INSTANTIATE_TEST_SUITE_P(
                       EvennessCase{"degtri_four.off", {30, 60}}, EvennessCase{"moebius.obj", {30, 60, 120}},
                       EvennessCase{"bunny_closed.off", {30, 60}}, EvennessCase{"stanford-bunny_original_holes.obj", {60}},
                       EvennessCase{"spot_triangulated.obj", {30, 60}}, EvennessCase{"spot_quadrangulated.obj", {30, 60}},
-                      EvennessCase{"fertility.off", {60}}, EvennessCase{"fandisk_quads.off", {30, 60}},
+                      EvennessCase{"fertility.off", {30, 60}}, EvennessCase{"fandisk_quads.off", {30, 60}},
                       EvennessCase{"conrod.stl", {30, 60}}, EvennessCase{"hourglass_ico.obj", {30, 60}},
                       EvennessCase{"platonic_shelf.obj", {60}}, EvennessCase{"camelhead.off", {120}},
-                      EvennessCase{"genus3hexa1.obj", {120}}, EvennessCase{"triple_vierbein.obj", {120}}),
+                      EvennessCase{"genus3hexa1.obj", {30, 60, 120}}, EvennessCase{"triple_vierbein.obj", {120}}),
     [](const auto& param_info) { return test_name(param_info.param.file); });
 
 // A wire at a spacing on a scan with parts thinner than the spacing (the bunny's ears at
