@@ -5,11 +5,13 @@
 // close; parts of the surface farther than half a spacing from the curve pull the nearest
 // point toward them, so branches grow into the pockets beyond their tips; no point ever
 // moves more than a quarter of the way to another pass, so the curves never cross
-// themselves or each other; a hairpin pinched to a needle (arms nearer than a quarter
+// themselves or each other, and where a curve came crossing itself (folded by the closest
+// point where the even mesh strays from the surface) the stretch between the crossing
+// segments is reversed; a hairpin pinched to a needle (arms nearer than a quarter
 // spacing) is cut off where its arms meet; consecutive points that the closest point put
 // on two sides of a part thinner than the spacing are joined round its edge (within 3
-// times their distance) instead of straight through it. The order of the points stays
-// the cycle's.
+// times their distance) instead of straight through it. Otherwise the order of the
+// points stays the cycle's.
 #pragma once
 
 #include "meander/closest_points.h"

@@ -91,10 +91,11 @@ std::vector<Vec3> boundary_points(const PolygonMesh& surface, double step) {
   return points;
 }
 
-// `out`: each curve with points about `step` apart: a stretch longer than 1.5 steps gets points
-// between (on the surface), and a point nearer than half a step to the last one kept is
-// dropped, so the points keep their order. A curve shorter than 4 steps (on a component
-// smaller than the spacing) keeps its points, which would otherwise be too few to close.
+// `out`: each curve with points about `step` apart: a stretch longer than 1.5 steps gets
+// points between (on the surface), and a point nearer than half a step to the last one
+// kept is dropped, so the points keep their order. A curve shorter than 4 steps (on a
+// component smaller than the spacing) keeps its points, which would otherwise be too few
+// to close.
 void resample(const Curves& curves, double step, const ClosestPoints& closest, Curves& out) {
   out.points.clear();
   out.start.assign(1, 0);
@@ -181,7 +182,8 @@ struct Near {
 };
 
 // What a round works in, kept from round to round: allocated anew, these arrays were
-// mapped and faulted in again every round (a third of the time on a 1M-face sphere).
+// mapped and faulted in again every round (two more of them made relaxing a 1M-face
+// sphere half again as slow).
 struct Round {
   std::vector<Vec3d> at, point_by_rank, across;
   std::vector<Vec3> cells;
