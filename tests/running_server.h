@@ -6,6 +6,15 @@
 
 #include <httplib.h>
 
+#include <gtest/gtest.h>
+
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <string>
+#include <string_view>
 #include <thread>
 
 namespace meander::test {
@@ -33,6 +42,50 @@ inline StudioServerOptions patient(StudioServerOptions options) {
     if (*timeout == default_value) *timeout = wait;
   return options;
 }
+
+// A raw TCP connection to 127.0.0.1:port.
+class RawConnection {
+public:
+  explicit RawConnection(int port) : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(uint16_t(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    EXPECT_EQ(connect(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  }
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  ~RawConnection() { close(fd_); }
+  // False once the server has closed or reset the connection.
+  bool send(std::string_view bytes) {
+    while (!bytes.empty()) {
+      const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+      if (n <= 0) return false;
+      bytes.remove_prefix(size_t(n));
+    }
+    return true;
+  }
+  // Tells the server that nothing more comes.
+  void done_sending() { shutdown(fd_, SHUT_WR); }
+  // Everything until the server closes.
+  std::string receive_all() {
+    std::string all;
+    char buffer[65536];
+    for (;;) {
+      pollfd fd{fd_, POLLIN, 0};
+      if (poll(&fd, 1, client_wait_seconds * 1000) <= 0) {
+        ADD_FAILURE() << "no answer and no close within " << client_wait_seconds << " s";
+        return all;
+      }
+      const ssize_t n = recv(fd_, buffer, sizeof buffer, 0);
+      if (n <= 0) return all;
+      all.append(buffer, size_t(n));
+    }
+  }
+
+private:
+  int fd_;
+};
 
 struct RunningServer {
   explicit RunningServer(StudioServerOptions options) : server(patient(std::move(options))) {

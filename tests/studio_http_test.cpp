@@ -33,48 +33,6 @@ using nlohmann::json;
 
 using test::RunningServer;
 
-// A raw TCP connection to 127.0.0.1:port.
-class Connection {
-public:
-  explicit Connection(int port) : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(uint16_t(port));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    EXPECT_EQ(connect(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  }
-  ~Connection() { close(fd_); }
-  // False once the server has closed or reset the connection.
-  bool send(std::string_view bytes) {
-    while (!bytes.empty()) {
-      const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
-      if (n <= 0) return false;
-      bytes.remove_prefix(size_t(n));
-    }
-    return true;
-  }
-  // Tells the server that nothing more comes.
-  void done_sending() { shutdown(fd_, SHUT_WR); }
-  // Everything until the server closes.
-  std::string receive_all() {
-    std::string all;
-    char buffer[65536];
-    for (;;) {
-      pollfd fd{fd_, POLLIN, 0};
-      if (poll(&fd, 1, test::client_wait_seconds * 1000) <= 0) {
-        ADD_FAILURE() << "no answer and no close within " << test::client_wait_seconds << " s";
-        return all;
-      }
-      const ssize_t n = recv(fd_, buffer, sizeof buffer, 0);
-      if (n <= 0) return all;
-      all.append(buffer, size_t(n));
-    }
-  }
-
-private:
-  int fd_;
-};
-
 // The status codes of the answers in `bytes`, in order.
 std::vector<int> statuses(const std::string& bytes) {
   std::vector<int> codes;
@@ -213,7 +171,7 @@ TEST(StudioHttp, BytesThatAreNotUtf8InAMessageLeaveTheServerUp) {
   for (const std::string& request :
        std::vector<std::string>{get("/%FC%FF"), get("/api/result/%FC/result.stl"), "PO\xfcST / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
         post("/api/mesh", multipart, part("mesh", "\xfc\xfe.obj", "v 1 2\n") + "--b0undary--\r\n")}) {
-    Connection c(running.port);
+    test::RawConnection c(running.port);
     c.send(request);
     c.done_sending();
     const std::string answer = c.receive_all();
@@ -224,7 +182,7 @@ TEST(StudioHttp, BytesThatAreNotUtf8InAMessageLeaveTheServerUp) {
   }
   // The message quotes the path with U+FFFD for each byte that is not UTF-8.
   EXPECT_EQ(error_of(running.server.serve_bytes(get("/%FC%FF"))), "no such page or API: GET /\xef\xbf\xbd\xef\xbf\xbd");
-  Connection next(running.port);
+  test::RawConnection next(running.port);
   next.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(statuses(next.receive_all()), std::vector<int>{200});
 }
@@ -257,7 +215,7 @@ TEST(StudioHttp, HugeHeadersAreCutOffAndTheServerAnswersTheNext) {
                                      "GET / HTTP/1.1\n" + many + "\n", std::string(size_t(4) << 20, '\n')};
   const size_t start = test::reset_heap_peak();
   for (const std::string& request : requests) {
-    Connection c(running.port);
+    test::RawConnection c(running.port);
     c.send(request);
     c.done_sending();
     const std::string answer = c.receive_all();
@@ -267,7 +225,7 @@ TEST(StudioHttp, HugeHeadersAreCutOffAndTheServerAnswersTheNext) {
       EXPECT_EQ(error_of(answer),
                 "malformed request: its request line, headers (at most 65536 bytes) or body could not be read");
     }
-    Connection next(running.port);
+    test::RawConnection next(running.port);
     next.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
     EXPECT_EQ(statuses(next.receive_all()), std::vector<int>{200});
   }
@@ -284,10 +242,10 @@ TEST(StudioHttp, SlowAndStalledClientsAreDroppedWithoutBlockingOthers) {
   options.header_timeout = std::chrono::milliseconds(500);
   options.request_timeout = std::chrono::milliseconds(1000);
   RunningServer running(options);
-  std::vector<std::unique_ptr<Connection>> slow;
-  for (int i = 0; i < 8; ++i) slow.push_back(std::make_unique<Connection>(running.port));
+  std::vector<std::unique_ptr<test::RawConnection>> slow;
+  for (int i = 0; i < 8; ++i) slow.push_back(std::make_unique<test::RawConnection>(running.port));
   // Two stall: one in its headers, one in its body.
-  Connection stalled_headers(running.port), stalled_body(running.port);
+  test::RawConnection stalled_headers(running.port), stalled_body(running.port);
   stalled_headers.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Wait: ");
   stalled_body.send("POST /api/make HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100\r\n\r\n{\"session\":");
   // The others send a byte every 100 ms until the server closes them (or for 60 s, to
@@ -303,12 +261,12 @@ TEST(StudioHttp, SlowAndStalledClientsAreDroppedWithoutBlockingOthers) {
     }
   });
   for (int i = 0; i < 4; ++i) {
-    Connection c(running.port);
+    test::RawConnection c(running.port);
     c.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
     EXPECT_EQ(statuses(c.receive_all()), std::vector<int>{200});
   }
   // Every slow or stalled connection ends, answered 400 or closed.
-  for (Connection* c : {&stalled_headers, &stalled_body})
+  for (test::RawConnection* c : {&stalled_headers, &stalled_body})
     for (const int code : statuses(c->receive_all())) EXPECT_EQ(code, 400);
   for (auto& c : slow)
     for (const int code : statuses(c->receive_all())) EXPECT_EQ(code, 400);
@@ -387,7 +345,7 @@ TEST(StudioHttp, HundredConcurrentUploadsSucceedInBoundedMemory) {
   const size_t grown = test::heap_peak() - start;
   EXPECT_LT(grown, (size_t(64) << 20) + 10 * 100 * bytes.size()) << "bytes for uploads of " << bytes.size() << " bytes";
   std::printf("100 concurrent uploads of %zu bytes: the heap's peak grew by %zu KiB\n", bytes.size(), grown >> 10);
-  Connection next(running.port);
+  test::RawConnection next(running.port);
   next.send("GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(statuses(next.receive_all()), std::vector<int>{200});
 }

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 namespace meander {
@@ -253,23 +254,30 @@ TEST_F(StudioServerTest, PathTraversalFails) {
   EXPECT_EQ(json::parse(upload->body)["name"], "x.obj");
 }
 
-TEST_F(StudioServerTest, TwentyConcurrentRequestsSucceed) {
+// Makes on one session replace each other: each is made or answered 409 cancelled, and
+// the last one begun is made.
+TEST_F(StudioServerTest, TwentyConcurrentRequestsSucceedOrAreReplaced) {
   const std::string session = demo_session();
-  std::atomic<int> ok{0};
+  std::atomic<int> sessions{0}, made{0}, replaced{0};
   std::vector<std::thread> threads;
   for (int i = 0; i < 20; ++i)
     threads.emplace_back([&, i] {
       auto c = client();
-      // A mix: new sessions, makes on one shared session with different seeds, downloads.
+      // A mix: new sessions, makes on one shared session with different seeds.
       httplib::Result res = i % 3 == 0 ? c.Post("/api/demo", "", "application/json")
                             : i % 3 == 1
                                 ? c.Post("/api/make", json{{"session", session}, {"seed", i}, {"mode", "constant-ribbon"}}.dump(),
                                          "application/json")
                                 : c.Post("/api/make", json{{"session", session}, {"seed", i}}.dump(), "application/json");
-      if (res && res->status == 200) ++ok;
+      if (!res) return;
+      if (i % 3 == 0) sessions += res->status == 200;
+      else if (res->status == 200) ++made;
+      else if (res->status == 409 && json::parse(res->body).value("cancelled", false)) ++replaced;
     });
   for (std::thread& t : threads) t.join();
-  EXPECT_EQ(ok.load(), 20);
+  EXPECT_EQ(sessions.load(), 7);
+  EXPECT_GE(made.load(), 1);
+  EXPECT_EQ(made.load() + replaced.load(), 13);
   const auto view = client().Get("/api/result/" + session + "/view.bin");
   ASSERT_TRUE(view);
   EXPECT_EQ(view->status, 200);
@@ -332,6 +340,101 @@ TEST_F(StudioServerTest, ForeignHostOrOriginGets403OverHttp) {
   const auto by_name = c.Get("/api/info", {{"Host", "localhost:" + port}});
   ASSERT_TRUE(by_name);
   EXPECT_EQ(by_name->status, 200);
+}
+
+// Cancel and replace (docs/studio.md, "Cancel"): a job held in flight by the test hook
+// (never a slow job: no test waits on a time) is cancelled by a newer request, by
+// /api/cancel, or by its client going away, and answered 409 {"cancelled": true}.
+class StudioCancelTest : public StudioServerTest {
+protected:
+  void SetUp() override {
+    running_ = std::make_unique<RunningServer>(StudioServerOptions{.port = 0, .max_upload = 1 << 20, .test_hooks = true});
+    port_ = running_->port;
+  }
+  std::string held_request(const std::string& session) const {
+    return json{{"session", session}, {"mode", "constant-wire"}, {"hold", true}}.dump();
+  }
+  // Until the session has a job in flight, which has begun a stage.
+  json wait_until_busy(const std::string& session) const {
+    for (auto c = client();;) {
+      const auto res = c.Get("/api/progress/" + session);
+      if (!res || res->status != 200) return json();
+      const json progress = json::parse(res->body);
+      if (progress["busy"] == true && !progress["stage"].get<std::string>().empty()) return progress;
+      std::this_thread::yield();
+    }
+  }
+  void wait_until_idle(const std::string& session) const {
+    for (auto c = client();;) {
+      const auto res = c.Get("/api/progress/" + session);
+      if (!res || res->status != 200 || json::parse(res->body)["busy"] == false) return;
+      std::this_thread::yield();
+    }
+  }
+};
+
+TEST_F(StudioCancelTest, ANewerRequestCancelsTheJobInFlight) {
+  const std::string session = demo_session();
+  std::optional<httplib::Result> held;
+  std::thread first([&] { held.emplace(client().Post("/api/make", held_request(session), "application/json")); });
+  const json progress = wait_until_busy(session);
+  EXPECT_EQ(progress["stage"], "quadrangulate");
+  EXPECT_EQ(progress["fraction"], -1.0);
+  const auto newer = client().Post("/api/make", json{{"session", session}, {"mode", "curve"}, {"seed", 3}}.dump(), "application/json");
+  first.join();
+  ASSERT_TRUE(held && *held);
+  EXPECT_EQ((*held)->status, 409) << (*held)->body;
+  EXPECT_EQ(json::parse((*held)->body)["cancelled"], true);
+  ASSERT_TRUE(newer);
+  ASSERT_EQ(newer->status, 200) << newer->body;
+  EXPECT_EQ(json::parse(newer->body)["mode"], "curve");
+  // The session holds the newer result, and nothing is in flight.
+  EXPECT_EQ(json::parse(client().Get("/api/progress/" + session)->body)["busy"], false);
+  const auto view = client().Get("/api/result/" + session + "/view.bin");
+  ASSERT_TRUE(view);
+  uint32_t faces[2];
+  std::memcpy(faces, view->body.data() + 8, 8);
+  EXPECT_EQ(faces[0] + faces[1], 0u) << "the view is the curve's, not the held wire's";
+}
+
+TEST_F(StudioCancelTest, CancelStopsTheJobInFlight) {
+  const std::string session = demo_session();
+  const auto none = client().Post("/api/cancel/" + session, "", "application/json");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(json::parse(none->body)["cancelled"], false);
+  std::optional<httplib::Result> held;
+  std::thread first([&] { held.emplace(client().Post("/api/make", held_request(session), "application/json")); });
+  wait_until_busy(session);
+  const auto cancelled = client().Post("/api/cancel/" + session, "", "application/json");
+  first.join();
+  ASSERT_TRUE(cancelled);
+  EXPECT_EQ(json::parse(cancelled->body)["cancelled"], true);
+  ASSERT_TRUE(held && *held);
+  EXPECT_EQ((*held)->status, 409) << (*held)->body;
+  EXPECT_EQ(client().Get("/api/result/" + session + "/view.bin")->status, 409) << "nothing made in the session";
+  EXPECT_EQ(client().Post("/api/cancel/nosuchsession", "", "application/json")->status, 404);
+  EXPECT_EQ(client().Get("/api/progress/nosuchsession")->status, 404);
+}
+
+TEST_F(StudioCancelTest, AClientThatGoesAwayTakesItsJobWithIt) {
+  const std::string session = demo_session();
+  const std::string body = held_request(session);
+  {
+    test::RawConnection connection(port_);
+    connection.send("POST /api/make HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: " +
+                    std::to_string(body.size()) + "\r\n\r\n" + body);
+    wait_until_busy(session);
+  } // closed
+  wait_until_idle(session); // ctest's timeout ends the test if the job never stops
+  EXPECT_EQ(client().Get("/api/result/" + session + "/view.bin")->status, 409) << "nothing made in the session";
+}
+
+TEST_F(StudioServerTest, HoldIsOnlyForTests) {
+  const std::string session = demo_session();
+  const auto res = client().Post("/api/make", json{{"session", session}, {"hold", true}}.dump(), "application/json");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_EQ(error_of(res), "hold: only for tests of clients (a server started with --test-hooks)");
 }
 
 TEST(StudioServerLimits, LargeUploadsAndResultsAreRefusedWithAMessage) {

@@ -393,6 +393,38 @@ TEST(Studio, ViewBytesHoldTheFacesAndSegments) {
   EXPECT_EQ(uv[5], 1.0f);
 }
 
+// render.png as the page's view shows it: its size, and its camera.
+TEST(Studio, ThePictureTakesTheViewsSizeAndCamera) {
+  const StudioSurface surface = demo_surface();
+  const StudioResult curve = make_studio_result(surface, {});
+  const StudioPicture picture = parse_studio_picture(
+      {{"size", "160x100"}, {"eye", "0,0,20"}, {"target", "0,0,0"}, {"up", "0,1,0"}, {"fov", "35"}});
+  ASSERT_TRUE(picture.camera.has_value());
+  EXPECT_EQ(picture.camera->eye.z, 20);
+  EXPECT_EQ(picture.camera->fov_degrees, 35);
+  const Texture front = read_texture(studio_download(surface, curve, StudioFile::png, picture).bytes, "render.png");
+  EXPECT_EQ(front.width, 160);
+  EXPECT_EQ(front.height, 100);
+  // Much farther away, the model covers far fewer pixels.
+  const auto covered = [](const Texture& t) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < t.rgba.size(); i += 4) n += t.rgba[i] < 250 || t.rgba[i + 1] < 250 || t.rgba[i + 2] < 250;
+    return n;
+  };
+  const Texture far = read_texture(
+      studio_download(surface, curve, StudioFile::png, parse_studio_picture({{"size", "160x100"}, {"eye", "0,0,80"}, {"target", "0,0,0"}}))
+          .bytes,
+      "render.png");
+  EXPECT_GT(covered(front), 4 * covered(far));
+  EXPECT_GT(covered(far), 0u);
+  for (const std::multimap<std::string, std::string>& bad :
+       std::vector<std::multimap<std::string, std::string>>{{{"eye", "0,0,1"}}, {{"eye", "1,2"}, {"target", "0,0,0"}},
+                                                            {{"size", "0x10"}}, {{"fov", "180"}}, {{"zoom", "2"}}})
+    EXPECT_THROW(parse_studio_picture(bad), UsageError) << bad.begin()->first;
+  EXPECT_THROW(studio_download(surface, curve, StudioFile::png, parse_studio_picture({{"eye", "1,1,1"}, {"target", "1,1,1"}})),
+               UsageError);
+}
+
 TEST(Studio, ResultFilesHaveFixedNames) {
   EXPECT_EQ(parse_studio_file("result.stl"), StudioFile::stl);
   for (const char* bad : {"../result.stl", "result.stl/", "/etc/passwd", "", "RESULT.STL", "result.stl.."})

@@ -23,6 +23,7 @@ struct ServeArgs {
   int64_t max_result = StudioServerOptions{}.max_result;
   bool open = false;
   std::filesystem::path page;
+  bool test_hooks = false;
 };
 
 // The built page, found at run time beside the program: installed, PREFIX/bin/meander
@@ -59,7 +60,8 @@ void run_serve(const ServeArgs& a) {
                        .max_upload = a.max_upload,
                        .page = a.page.empty() ? page_beside_program() : a.page,
                        .max_faces = a.max_faces,
-                       .max_result = a.max_result});
+                       .max_result = a.max_result,
+                       .test_hooks = a.test_hooks});
   const int port = server.bind();
   const std::string url = "http://" + (a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host) + ":" +
                           std::to_string(port) + "/";
@@ -105,6 +107,8 @@ Command add_serve_command(CLI::App& parent) {
   app->add_option("--page", args->page,
                   "folder of the built page (default: share/meander/studio beside the program, as installed or built)")
       ->check(CLI::ExistingDirectory);
+  // Not in --help: for the studio's browser test (StudioServerOptions::test_hooks).
+  app->add_flag("--test-hooks", args->test_hooks, "let make requests hold their job until cancelled")->group("");
   return {app, [args] { run_serve(*args); }};
 }
 

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <new>
@@ -165,6 +166,20 @@ private:
   std::string output_;
 };
 
+// The socket of the connection whose request this thread is answering (-1: none, or
+// bytes from memory): what a handler asks whether its client is still there.
+thread_local int current_socket = -1;
+
+// Whether the client on `socket` has closed its end (a page that aborted its fetch): it
+// waits for no answer any more.
+bool client_gone(int socket) {
+  pollfd fd{socket, POLLIN | POLLRDHUP, 0};
+  if (poll(&fd, 1, 0) <= 0) return false;
+  if (fd.revents & (POLLHUP | POLLERR | POLLRDHUP)) return true;
+  char byte;
+  return recv(socket, &byte, 1, MSG_PEEK | MSG_DONTWAIT) == 0;
+}
+
 // httplib's server with its connections served through ConnectionStream, one request
 // after another, each prepared before httplib reads its body.
 class GuardedServer final : public httplib::Server {
@@ -176,7 +191,9 @@ public:
       if (!stream.next_request(std::chrono::seconds(keep_alive_seconds), [this] { return svr_sock_ != INVALID_SOCKET; }))
         return;
       bool closed = false;
+      current_socket = stream.socket();
       const bool written = process_request(stream, count == 1, closed, [&](httplib::Request& req) { prepare(req, stream); });
+      current_socket = -1;
       // A request not read to its end (refused before its body, or cut off) leaves bytes
       // that are not the next request: never parse them as one.
       if (!written || closed || !stream.request_complete()) return;
@@ -271,6 +288,8 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
 template <class Work> void answer(httplib::Response& res, Work work) {
   try {
     work();
+  } catch (const Cancelled&) {
+    send_json(res, 409, {{"error", "cancelled: a newer request or a cancel replaced this one"}, {"cancelled", true}});
   } catch (const UsageError& e) {
     send_error(res, 400, e.what());
   } catch (const InputError& e) {
@@ -451,14 +470,42 @@ struct StudioServer::Impl {
                                 " curve points, triangles and texture pixels, more than this server's --max-result of " +
                                 std::to_string(options.max_result) +
                                 ": lower samples, sides, levels, subdivide or texture_size");
+        if (request.hold && !options.test_hooks)
+          throw UsageError("hold: only for tests of clients (a server started with --test-hooks)");
+        // A newer request replaces this one, and a client that went away takes its job with it.
+        const int socket = current_socket;
+        const std::shared_ptr<Progress> job =
+            session->start_job(socket < 0 ? std::function<bool()>() : [socket] { return client_gone(socket); });
+        if (request.hold) job->hold();
+        struct EndJob {
+          StudioSessions::Session& session;
+          const std::shared_ptr<Progress>& job;
+          ~EndJob() { session.end_job(job); }
+        } end_job{*session, job};
         std::lock_guard guard(session->lock);
-        auto result =
-            std::make_shared<const StudioResult>(make_studio_result(*session->surface, request.params, session->result.get()));
+        auto result = std::make_shared<const StudioResult>(
+            make_studio_result(*session->surface, request.params, session->result.get(), job.get()));
         session->result = result;
         json reply = json::parse(studio_stats_json(*result));
         reply["revision"] = ++revisions;
         send_json(res, 200, reply);
       });
+    });
+
+    // The job in flight: its stage and the fraction of it done (-1: the stage cannot tell).
+    http.Get(R"(/api/progress/([^/]+))", [this](const httplib::Request& req, httplib::Response& res) {
+      const auto session = sessions.find(req.matches[1].str());
+      if (!session) return send_error(res, 404, "unknown session (it may have expired): upload the mesh again");
+      const std::optional<Progress::State> state = session->job_state();
+      if (!state) return send_json(res, 200, {{"busy", false}});
+      send_json(res, 200, {{"busy", true}, {"stage", state->stage}, {"fraction", state->fraction}});
+    });
+
+    // Stops the job in flight, whose request is then answered 409 {"cancelled": true}.
+    http.Post(R"(/api/cancel/([^/]+))", [this](const httplib::Request& req, httplib::Response& res) {
+      const auto session = sessions.find(req.matches[1].str());
+      if (!session) return send_error(res, 404, "unknown session (it may have expired): upload the mesh again");
+      send_json(res, 200, {{"cancelled", session->cancel_job()}});
     });
 
     http.Get(R"(/api/result/([^/]+)/([^/]+))", [this](const httplib::Request& req, httplib::Response& res) {
@@ -476,7 +523,8 @@ struct StudioServer::Impl {
         // Both branches lvalues: `result ? *result : StudioResult{}` copied the whole result
         // (mesh, curve, quads) on every download, the view's included.
         const StudioResult nothing;
-        StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file);
+        const StudioPicture picture = file == StudioFile::png ? parse_studio_picture(req.params) : StudioPicture{};
+        StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file, picture);
         res.set_header("Content-Disposition", "attachment; filename=\"" + download.filename + "\"");
         // What set_content does, without its copy of a view of tens of megabytes.
         res.body = std::move(download.bytes);

@@ -42,6 +42,9 @@ struct StudioServerOptions {
   // Connections served at once (more wait for a thread); each holds at most one request
   // body of max_upload bytes, so peak memory is about threads * max_upload plus the work.
   int threads = 16;
+  // For tests of clients: a make request may ask its job to wait until cancelled
+  // (MakeRequest::hold).
+  bool test_hooks = false;
 };
 
 // Whether a request may reach the API: its Host must name this server (127.0.0.1,

@@ -67,8 +67,9 @@ struct WireResult {
 // The wire on a curve made with wire_curve_job(job), then its report. Throws
 // TopologyError when no radius avoids a self-intersection, ParameterError for values out
 // of range, and what constant_wire, variable_wire and check_printability throw. Appends
-// to `times` if given.
-WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times = nullptr);
+// to `times` if given, and tells `progress` (which may cancel it: Cancelled) if given.
+WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times = nullptr,
+                     Progress* progress = nullptr);
 
 // What the slab mesh changed, as sentences ("flipped 3 edges facing an angle over 120
 // degrees"), none when nothing; for the user to read beside the result.
@@ -86,15 +87,18 @@ struct DuotoneJob {
 };
 
 // make_duotone(mesh, connectivity, job.duotone), on the remeshed surface with job.spacing
-// (its vertices on the input surface). Throws what remesh_to_spacing and make_duotone throw.
-Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job);
+// (its vertices on the input surface). Throws what remesh_to_spacing and make_duotone
+// throw, and Cancelled by `progress`, if given, between its stages.
+Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job,
+                     Progress* progress = nullptr);
 
 // The duotone make_duotone(mesh, connectivity, job) made, painted with
 // job.tiles and subdivided job.subdivide levels. `atlas`, if not empty, is
 // duotone_atlas(job.tiles) already made. Throws ParameterError for values out of range,
-// and what duotone_surface and subdivide throw. Appends to `times` if given.
+// and what duotone_surface and subdivide throw. Appends to `times` if given; `progress`
+// as make_wire's.
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas = {},
-                           StageTimes* times = nullptr);
+                           StageTimes* times = nullptr, Progress* progress = nullptr);
 
 // The colours of the pictures: a copper wire on a light grey surface.
 inline constexpr Rgb wire_color{0.72f, 0.45f, 0.2f};

@@ -7,6 +7,7 @@
 #include "meander/curve.h"
 #include "meander/flip_caps.h"
 #include "meander/hamiltonian.h"
+#include "meander/progress.h"
 #include "meander/quadrangulate.h"
 #include "meander/relax.h"
 #include "meander/remesh.h"
@@ -97,12 +98,14 @@ PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangu
 
 // Runs the remeshing (with CurveJob::spacing), connectivity, quadrangulation, the cycle,
 // control points and smoothing on a mesh that repair() accepted. Takes the mesh by value so its memory is released as soon as
-// the quad mesh exists. Appends to `times` if given. Throws TopologyError for a quad
-// mesh with boundary under --quad catmull-clark or none, and what the stages throw.
-CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times = nullptr);
+// the quad mesh exists. Appends to `times` if given, and tells `progress` (which may
+// cancel it) if given. Throws TopologyError for a quad mesh with boundary under --quad
+// catmull-clark or none, Cancelled, and what the stages throw.
+CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times = nullptr, Progress* progress = nullptr);
 
 // The same with the mesh's connectivity already known (RepairResult::connectivity); an
 // empty or mismatched one is rebuilt.
-CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times = nullptr);
+CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times = nullptr,
+                       Progress* progress = nullptr);
 
 } // namespace meander

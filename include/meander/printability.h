@@ -7,6 +7,7 @@
 #pragma once
 
 #include "meander/mesh.h"
+#include "meander/progress.h"
 
 #include <array>
 #include <cstdint>
@@ -122,7 +123,10 @@ struct PrintabilityReport {
 // whatever the number of threads. O(n log n) time and O(n) memory for n triangles of
 // bounded overlap; the pair search and the rays run in parallel (oneTBB, Embree); its
 // time is mostly in touching fresh memory (docs/wires.md, "Printability report").
-PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options = {});
+// `progress`, if given, may cancel it (Cancelled) and has the fraction of the
+// self-intersection search.
+PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options = {},
+                                      Progress* progress = nullptr);
 
 // Every face that meets another where the mesh does not join them (the
 // self-intersections check_printability looks for; zero-area triangles left out),

@@ -16,6 +16,7 @@
 
 #include "meander/closest_points.h"
 #include "meander/mesh.h"
+#include "meander/progress.h"
 
 #include <vector>
 
@@ -33,12 +34,12 @@ struct RelaxOptions {
 // whatever the number of threads (oneTBB). O(iterations * (P + S) log F) for P points
 // of the result, S = 8 area / spacing^2 surface samples and F faces, on curves whose passes
 // are about a spacing apart. Throws ParameterError for a spacing that is not a positive number or
-// iterations < 0, InputError for an open curve.
+// iterations < 0, InputError for an open curve, Cancelled (checked every round).
 struct RelaxedCurves {
   Polylines curves;
   std::vector<Vec3> normals; // the surface's unit normal at each point, as its face has it
 };
 RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
-                           const RelaxOptions& options);
+                           const RelaxOptions& options, Progress* progress = nullptr);
 
 } // namespace meander

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -86,6 +87,14 @@ enum class Framing {
   sphere,
 };
 
+// A camera placed by the caller (the studio's view as it is on screen), in place of the
+// view and the framing: where the eye is, the point it looks at, which way is up, and
+// the vertical field of view in degrees.
+struct CameraPose {
+  Vec3d eye, target, up{0, 1, 0};
+  double fov_degrees = 25;
+};
+
 struct RenderOptions {
   int32_t width = 1600, height = 1200; // pixels, each 1..16384
   View view;
@@ -97,6 +106,7 @@ struct RenderOptions {
   double curve_width = 0;
   CurveStyle curve_style = CurveStyle::tube;
   Framing framing = Framing::bounds;
+  std::optional<CameraPose> camera; // set: used in place of view and framing
 };
 
 // "front", "back", "left", "right", "top", "iso" or "AZ,EL" in degrees ("30,20").

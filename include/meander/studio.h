@@ -12,9 +12,12 @@
 #include "meander/jobs.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
+#include "meander/progress.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -52,10 +55,14 @@ struct StudioParams {
 struct MakeRequest {
   std::string session;
   StudioParams params;
+  // For tests of clients: the job waits, once started, until it is cancelled
+  // (Progress::hold), so that a test holds it in flight without making it slow. A
+  // server takes it only when started for tests.
+  bool hold = false;
 };
 
 // Parses the body of POST /api/make: a JSON object with "session" (required), "mode",
-// "preview" (boolean) and any parameter of any mode's job (parameters.h: numbers as JSON
+// "preview" and "hold" (booleans) and any parameter of any mode's job (parameters.h: numbers as JSON
 // numbers, names as strings, "radius" a number or "auto", "colors" "C1,C2"), of which
 // those of the mode's job are set and the others left alone; absent keys keep their
 // defaults. Throws UsageError naming the key and what it expects ("s: expected a number
@@ -121,8 +128,9 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 // `previous`, the session's last result if any, lends its duotone atlas when the tile
 // options are the same (the atlas depends on them alone), and to a constant preview with
 // `radius auto` the radius it found, when it is a full result on the same curve.
+// `progress`, if given, shows the stage under way and may cancel the work (Cancelled).
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params,
-                                const StudioResult* previous = nullptr);
+                                const StudioResult* previous = nullptr, Progress* progress = nullptr);
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
 // leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
@@ -163,10 +171,23 @@ struct StudioDownload {
   std::string filename; // offered to the browser (Content-Disposition): NAME_MODE[_preview].EXT
 };
 
+// How render.png is drawn: its size, and the camera of the page's view (none: framed as
+// `meander curve --png` frames it).
+struct StudioPicture {
+  int32_t width = 1200, height = 900;
+  std::optional<CameraPose> camera;
+};
+
+// The picture a query asks for (GET .../render.png?size=WxH&eye=X,Y,Z&target=X,Y,Z&up=X,Y,Z&fov=DEGREES,
+// each optional, eye and target together). Throws UsageError naming the key for anything
+// else (and what render() refuses: a size over 16384 or a degenerate camera).
+StudioPicture parse_studio_picture(const std::multimap<std::string, std::string>& query);
+
 // One file of the result, made in memory. The zip holds OBJ + MTL (+ the PNG texture of
 // a duotone). Throws UsageError for a mesh file in curve mode, texture.png without a
 // duotone.
-StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file);
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
+                               const StudioPicture& picture = {});
 
 // Sessions: each holds a surface and its latest result, under a random 128-bit id
 // (32 hex digits). Safe to call from many threads; work on one session is serialised
@@ -178,6 +199,21 @@ public:
     std::mutex lock; // held while making or reading `result`
     std::shared_ptr<const StudioSurface> surface;
     std::shared_ptr<const StudioResult> result; // null until the first make
+
+    // The job of a new request: the one in flight, if any, is cancelled (it throws
+    // Cancelled at its next check and lets go of `lock`), since nobody wants its result
+    // any more. `abandoned` as Progress's.
+    std::shared_ptr<Progress> start_job(std::function<bool()> abandoned = {});
+    // The job is over (made, failed or cancelled).
+    void end_job(const std::shared_ptr<Progress>& job);
+    // Cancels the job in flight; false if there is none.
+    bool cancel_job();
+    // The job in flight's stage and fraction; nullopt when there is none.
+    std::optional<Progress::State> job_state() const;
+
+  private:
+    mutable std::mutex job_lock_;
+    std::shared_ptr<Progress> job_;
   };
 
   explicit StudioSessions(size_t capacity = 32) : capacity_(capacity) {}

@@ -4,19 +4,13 @@
 #include "meander/error.h"
 #include "meander/parameters.h"
 #include "meander/subdivide.h"
+#include "stages.h"
 
-#include <chrono>
 #include <cstdio>
 
 namespace meander {
 
 namespace {
-
-void lap(StageTimes* times, const char* stage, std::chrono::steady_clock::time_point& start) {
-  const auto now = std::chrono::steady_clock::now();
-  if (times) times->emplace_back(stage, std::chrono::duration<double>(now - start).count());
-  start = now;
-}
 
 ConstantWireOptions constant_options(const WireJob& job) {
   return {.shape = job.shape, .radius = job.radius, .sides = job.sides, .curve = job.curve.curve};
@@ -49,9 +43,10 @@ int64_t wire_triangles(int64_t cycle_triangles, const WireJob& job) {
                                             : variable_wire_triangles(cycle_triangles, variable_options(job));
 }
 
-WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times) {
+WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times, Progress* progress) {
   check_parameters(job);
-  auto start = std::chrono::steady_clock::now();
+  Stages stages(times, progress);
+  stages.begin("wire");
   WireResult result;
   bool known_clear = false; // variable_wire searched its result already
   if (job.method == WireMethod::constant) {
@@ -73,8 +68,11 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
     result.mesh = std::move(made.mesh);
     known_clear = made.clear;
   }
-  lap(times, "wire", start);
-  if (!job.report) return result;
+  if (!job.report) {
+    stages.end();
+    return result;
+  }
+  stages.begin("report");
   // In millimetres (a model size), thickness and gaps are judged against the nozzle.
   const bool millimetres = job.curve.model_size.has_value();
   const bool thickness = job.measure_thickness && job.shape == WireShape::wire;
@@ -83,9 +81,10 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
                     .thickness = thickness,
                     .required_thickness = job.min_thickness > 0 ? job.min_thickness : millimetres ? 2 * job.nozzle : 0,
                     .nozzle = thickness ? job.nozzle : 0,
-                    .required_gap = millimetres && thickness ? job.nozzle : 0});
+                    .required_gap = millimetres && thickness ? job.nozzle : 0},
+      progress);
   if (result.report.self_intersecting) result.surface_crossings = crossing_cycle_triangles(curve.quads, curve.cycle);
-  lap(times, "report", start);
+  stages.end();
   return result;
 }
 
@@ -108,26 +107,34 @@ std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob
   return notes;
 }
 
-Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job) {
+Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job, Progress* progress) {
   if (job.model_size) {
     DuotoneJob sized = job;
     sized.model_size.reset();
-    return make_duotone(scaled_to_size(mesh, *job.model_size), connectivity, sized);
+    return make_duotone(scaled_to_size(mesh, *job.model_size), connectivity, sized, progress);
   }
-  if (!job.spacing) return make_duotone(mesh, connectivity, job.duotone);
+  Stages stages(nullptr, progress);
+  if (!job.spacing) {
+    stages.begin("duotone");
+    return make_duotone(mesh, connectivity, job.duotone);
+  }
+  stages.begin("remesh");
   const PolygonMesh even = remesh_to_spacing(mesh, *job.spacing, job.duotone.quadrangulation, job.max_faces);
+  stages.begin("duotone");
   return make_duotone(even, build_connectivity(even), job.duotone);
 }
 
-TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times) {
+TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times,
+                           Progress* progress) {
   check_parameters(job);
-  auto start = std::chrono::steady_clock::now();
+  Stages stages(times, progress);
+  stages.begin("tiles");
   TexturedMesh surface = atlas.empty() ? duotone_surface(duotone, job.tiles) : duotone_surface(duotone, job.tiles, atlas);
-  lap(times, "tiles", start);
   if (job.subdivide > 0) {
+    stages.begin("subdivide");
     surface = subdivide(surface, {.levels = job.subdivide});
-    lap(times, "subdivide", start);
   }
+  stages.end();
   return surface;
 }
 

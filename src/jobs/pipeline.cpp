@@ -6,30 +6,13 @@
 #include "meander/io.h"
 #include "meander/parameters.h"
 #include "meander/star_polygons.h"
+#include "stages.h"
 
-#include <chrono>
 #include <optional>
 #include <string>
 
 namespace meander {
 
-namespace {
-
-class Stopwatch {
-public:
-  explicit Stopwatch(StageTimes* times) : times_(times), start_(std::chrono::steady_clock::now()) {}
-  void lap(const char* stage) {
-    const auto now = std::chrono::steady_clock::now();
-    if (times_) times_->emplace_back(stage, std::chrono::duration<double>(now - start_).count());
-    start_ = now;
-  }
-
-private:
-  StageTimes* times_;
-  std::chrono::steady_clock::time_point start_;
-};
-
-} // namespace
 
 PolygonMesh scaled_to_size(PolygonMesh mesh, double size) {
   const double side = bounding_box(mesh.positions).largest_side();
@@ -69,25 +52,27 @@ PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangu
   return input ? remesh(mesh, options, *input) : remesh(mesh, options);
 }
 
-CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times) {
-  return make_curve(std::move(mesh), Connectivity(), job, times);
+CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times, Progress* progress) {
+  return make_curve(std::move(mesh), Connectivity(), job, times, progress);
 }
 
-CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times) {
-  Stopwatch watch(times);
+CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times,
+                       Progress* progress) {
+  Stages stages(times, progress);
   CurveResult result;
   if (job.model_size) mesh = scaled_to_size(std::move(mesh), *job.model_size);
   // The input surface, onto which the curve made on its remeshed version is moved.
   PolygonMesh surface;
   std::optional<ClosestPoints> on_surface;
   if (job.spacing) {
+    stages.begin("remesh");
     surface = std::move(mesh);
     on_surface.emplace(surface);
     mesh = remesh_to_spacing(surface, *job.spacing, job.quadrangulation, job.max_faces, &*on_surface);
     connectivity = Connectivity();
-    watch.lap("remesh");
   }
   if (job.slab_mesh) {
+    stages.begin("slab mesh");
     if (job.slab_mesh->star_sides > 0) {
       StarredPolygons starred = star_polygons(std::move(mesh), job.slab_mesh->star_sides);
       mesh = std::move(starred.mesh);
@@ -106,12 +91,12 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     }
     // Flips keep the sizes, which the check below would not catch.
     if (result.stars + result.cap_flips + result.cap_cuts + result.needle_collapses > 0) connectivity = Connectivity();
-    watch.lap("slab mesh");
   }
   if (connectivity.halfedge_edge.size() != mesh.face_vertices.size() || connectivity.edge_start.empty()) {
+    stages.begin("connectivity");
     connectivity = build_connectivity(mesh);
-    watch.lap("connectivity");
   }
+  stages.begin("quadrangulate");
   switch (job.quadrangulation) {
   case Quadrangulation::dual_simplest: result.quads = dual_simplest(std::move(mesh), std::move(connectivity)); break;
   case Quadrangulation::catmull_clark: result.quads = catmull_clark_quads(mesh, connectivity); break;
@@ -126,24 +111,25 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
                           "Taubin's cycle is only defined there; the default quad dual-simplest handles "
                           "boundaries");
   }
-  watch.lap("quadrangulate");
   // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
   const bool sample = job.sample || job.spacing;
   std::optional<CycleCurveWriter> writer;
   const PolylineWriteOptions write{.millimetres = job.model_size.has_value()};
   if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output, write);
+  stages.begin("cycle");
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
-  watch.lap("cycle");
   if (writer) {
+    stages.begin("smooth + write");
     result.points_written = writer->finish(result.cycle);
-    watch.lap("smooth + write");
   }
   if (sample) {
+    stages.begin("smooth");
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
-    watch.lap("smooth");
     if (job.spacing) {
+      stages.begin(job.relax > 0 ? "relax" : "project");
       if (job.relax > 0) {
-        RelaxedCurves relaxed = relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax});
+        RelaxedCurves relaxed =
+            relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax}, progress);
         result.curves = std::move(relaxed.curves);
         result.normals = std::move(relaxed.normals);
       } else {
@@ -151,14 +137,14 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
         on_surface->project(result.curves.points, result.normals);
       }
       result.surface = std::move(surface);
-      watch.lap(job.relax > 0 ? "relax" : "project");
     }
     if (!job.output.empty()) {
+      stages.begin("write curve");
       write_polylines(result.curves, job.output, write);
       result.points_written = int64_t(result.curves.points.size());
-      watch.lap("write curve");
     }
   }
+  stages.end();
   return result;
 }
 

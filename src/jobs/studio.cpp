@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <random>
@@ -192,9 +193,9 @@ MakeRequest parse_make_request(std::string_view body) {
     if (key == "session") {
       request.session = text(value, "session");
       has_session = true;
-    } else if (key == "preview") {
-      if (!value.is_boolean()) throw UsageError("preview: expected true or false, got " + describe(value));
-      p.preview = value.get<bool>();
+    } else if (key == "preview" || key == "hold") {
+      if (!value.is_boolean()) throw UsageError(key + ": expected true or false, got " + describe(value));
+      (key == "preview" ? p.preview : request.hold) = value.get<bool>();
     } else if (key != "mode" && !set_studio_parameter(p, key, value)) {
       throw UsageError(describe(json(key)) + ": unknown parameter");
     }
@@ -317,7 +318,8 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& req
   return result_size(surface, effective(surface, requested));
 }
 
-StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested, const StudioResult* previous) {
+StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& requested, const StudioResult* previous,
+                                Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
   const StudioParams params = effective(surface, requested);
   StudioResult result{.params = params};
@@ -333,10 +335,12 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   };
   if (mode == StudioMode::duotone) {
     const DuotoneJob& job = params.duotone;
-    Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job); });
+    Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job, progress); });
     const bool same_atlas = previous && previous->params.mode == StudioMode::duotone &&
                             previous->params.duotone.tiles == job.tiles && !previous->appearance.materials.empty();
-    TexturedMesh painted = paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{});
+    TexturedMesh painted =
+        paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{}, nullptr, progress);
+    if (progress) progress->begin("separating curves");
     result.curve.curves = separating_curves(duotone, job.tiles.style);
     result.curve_length = total_length(result.curve.curves);
     result.curve.quads = std::move(duotone.quads);
@@ -352,12 +356,14 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   result.curve = about_surface([&] {
     CurveJob curve_job = mode == StudioMode::curve ? job.curve : wire_curve_job(job);
     curve_job.cycle.count_leaves = true;
-    return make_curve(input.mesh, input.connectivity, curve_job);
+    return make_curve(input.mesh, input.connectivity, curve_job, nullptr, progress);
   });
   result.curve_length = total_length(result.curve.curves);
   // How even a curve of a chosen spacing came out, for the stats beside it.
-  if (job.curve.spacing && !params.preview && result.curve.surface.num_faces() > 0)
+  if (job.curve.spacing && !params.preview && result.curve.surface.num_faces() > 0) {
+    if (progress) progress->begin("evenness");
     result.evenness = measure_evenness(result.curve.surface, result.curve.curves, {.surface_samples = 10000});
+  }
   if (mode == StudioMode::curve) {
     result.triangles = int64_t(result.curve.cycle.order.size());
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -374,6 +380,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
                             before->wire.curve.quadrangulation == asked.quadrangulation &&
                             before->wire.curve.cycle.tree == asked.cycle.tree && before->wire.curve.cycle.seed == asked.cycle.seed &&
                             before->wire.curve.curve == asked.curve;
+    if (progress) progress->begin("radius");
     const double radius = same_curve ? previous->radius
                                      : max_wire_radius(result.curve.curves,
                                                        job.curve.curve.smoothing == Smoothing::none ? 1 : job.curve.curve.samples);
@@ -381,7 +388,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
       throw TopologyError(surface.name + ": the curve touches itself: no wire radius avoids a self-intersection");
     job.radius = radius;
   }
-  WireResult made = about_surface([&] { return make_wire(result.curve, job); });
+  WireResult made = about_surface([&] { return make_wire(result.curve, job, nullptr, progress); });
   result.mesh = std::move(made.mesh);
   result.radius = made.radius;
   result.report = made.report;
@@ -531,7 +538,46 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   return out;
 }
 
-StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file) {
+StudioPicture parse_studio_picture(const std::multimap<std::string, std::string>& query) {
+  StudioPicture picture;
+  std::optional<Vec3d> eye, target;
+  CameraPose camera;
+  for (const auto& [key, value] : query) {
+    const auto vector = [&] {
+      Vec3d v;
+      char more = 0;
+      if (std::sscanf(value.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &more) != 3 || !std::isfinite(norm(v)))
+        throw UsageError(key + ": expected three numbers X,Y,Z, got '" + value.substr(0, 60) + "'");
+      return v;
+    };
+    if (key == "size") {
+      parse_size(value, picture.width, picture.height);
+    } else if (key == "eye") {
+      eye = vector();
+    } else if (key == "target") {
+      target = vector();
+    } else if (key == "up") {
+      camera.up = vector();
+    } else if (key == "fov") {
+      char* end = nullptr;
+      camera.fov_degrees = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !(camera.fov_degrees > 0 && camera.fov_degrees < 180))
+        throw UsageError("fov: expected degrees between 0 and 180, got '" + value.substr(0, 60) + "'");
+    } else {
+      throw UsageError("'" + key.substr(0, 40) + "': unknown picture option (expected size, eye, target, up or fov)");
+    }
+  }
+  if (eye.has_value() != target.has_value()) throw UsageError("eye and target: give both, or neither");
+  if (eye) {
+    camera.eye = *eye;
+    camera.target = *target;
+    picture.camera = camera;
+  }
+  return picture;
+}
+
+StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
+                               const StudioPicture& picture) {
   // A preview's files say so in their names, so that a script's saved files tell it too.
   const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode) +
                            (result.params.preview ? "_preview" : "");
@@ -587,7 +633,9 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
                         : curve_mode ? curve_scene(result.curve)
                                      : wire_scene(result.mesh, result.curve, result.params.wire.shape, MeshStyle::faint);
-    return {png_file_bytes(render(scene, {.width = 1200, .height = 900, .samples = 4})), "image/png", base + ".png"};
+    return {png_file_bytes(
+                render(scene, {.width = picture.width, .height = picture.height, .samples = 4, .camera = picture.camera})),
+            "image/png", base + ".png"};
   }
   }
   throw UsageError("unknown result file");
@@ -611,6 +659,32 @@ StudioSessions::Added StudioSessions::add(StudioSurface surface) {
     sessions_.erase(oldest);
   }
   return {std::move(id), std::move(session)};
+}
+
+std::shared_ptr<Progress> StudioSessions::Session::start_job(std::function<bool()> abandoned) {
+  auto job = std::make_shared<Progress>(std::move(abandoned));
+  std::lock_guard guard(job_lock_);
+  if (job_) job_->cancel();
+  job_ = job;
+  return job;
+}
+
+void StudioSessions::Session::end_job(const std::shared_ptr<Progress>& job) {
+  std::lock_guard guard(job_lock_);
+  if (job_ == job) job_.reset();
+}
+
+bool StudioSessions::Session::cancel_job() {
+  std::lock_guard guard(job_lock_);
+  if (!job_) return false;
+  job_->cancel();
+  return true;
+}
+
+std::optional<Progress::State> StudioSessions::Session::job_state() const {
+  std::lock_guard guard(job_lock_);
+  if (!job_) return std::nullopt;
+  return job_->state();
 }
 
 std::shared_ptr<StudioSessions::Session> StudioSessions::find(std::string_view id) const {

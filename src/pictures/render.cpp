@@ -84,6 +84,16 @@ struct Camera {
 };
 
 Camera fit_camera(const Scene& scene, const RenderOptions& o) {
+  if (o.camera) {
+    Camera c;
+    c.eye = o.camera->eye;
+    c.forward = normalized(o.camera->target - o.camera->eye);
+    c.right = normalized(cross(c.forward, o.camera->up));
+    c.up = cross(c.right, c.forward);
+    c.aspect = double(o.width) / o.height;
+    c.tan_half_height = std::tan(o.camera->fov_degrees * pi / 180 / 2);
+    return c;
+  }
   const double az = o.view.azimuth * pi / 180, el = std::clamp(o.view.elevation, -89.9, 89.9) * pi / 180;
   Camera c;
   const Vec3d from{std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
@@ -418,6 +428,13 @@ Image render(const Scene& scene, const RenderOptions& o) {
                      ": width and height must be 1.." + std::to_string(max_side) + " pixels");
   if (o.samples < 1 || o.samples > 1024)
     throw UsageError("samples " + std::to_string(o.samples) + ": expected 1..1024 rays per pixel");
+  if (const std::optional<CameraPose>& c = o.camera) {
+    const Vec3d forward = c->target - c->eye;
+    const bool finite = std::isfinite(norm(c->eye) + norm(c->target) + norm(c->up) + c->fov_degrees);
+    if (!finite || norm(forward) == 0 || norm(cross(forward, c->up)) == 0 || !(c->fov_degrees > 0 && c->fov_degrees < 180))
+      throw UsageError("camera: expected finite positions, the eye apart from the target, an up direction not along the "
+                       "view, and a field of view between 0 and 180 degrees");
+  }
 
   const Camera camera = fit_camera(scene, o);
   Box3 box;

@@ -438,7 +438,7 @@ void relax(const Curves& curves, const Walls& walls, std::span<const Vec3> sampl
 } // namespace
 
 RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, const ClosestPoints& closest,
-                           const RelaxOptions& options) {
+                           const RelaxOptions& options, Progress* progress) {
   if (!(options.spacing > 0 && std::isfinite(options.spacing)))
     throw ParameterError("spacing", " must be a positive number to relax a curve");
   if (options.iterations < 0) throw ParameterError("iterations", " must be at least 0");
@@ -472,6 +472,7 @@ RelaxedCurves relax_curves(const Polylines& curves, const PolygonMesh& surface, 
   resample(work, step, closest, moved);
   std::swap(work, moved);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    advance_progress(progress, double(iteration) / options.iterations);
     relax(work, walls, iteration % 2 == 0 ? samples : std::span<const Vec3>(), box, options.spacing, closest, round, moved);
     resample(moved, step, closest, work);
   }

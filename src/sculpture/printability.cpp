@@ -270,7 +270,7 @@ std::vector<Box> triangle_boxes(const PolygonMesh& mesh, const Triangles& tris, 
 // Embree's collision query finds the candidate pairs: a scene holds one user geometry
 // whose primitives are boxes (rtcCollide takes nothing else), and `boxes` must outlive
 // the scene's commit, which reads them.
-void add_boxes(EmbreeScene& scene, const std::vector<Box>& boxes) {
+void add_boxes(EmbreeScene& scene, std::span<const Box> boxes) {
   RTCGeometry geometry = rtcNewGeometry(scene.device(), RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geometry, unsigned(boxes.size()));
   rtcSetGeometryUserData(geometry, const_cast<Box*>(boxes.data()));
@@ -292,8 +292,8 @@ void add_boxes(EmbreeScene& scene, const std::vector<Box>& boxes) {
 // boxes are compared here. With a and b the same scene each unordered pair comes once,
 // as i < j (Embree meets it in both orders).
 template <class F>
-void for_each_overlapping(const EmbreeScene& a, const std::vector<Box>& boxes_a, const EmbreeScene& b,
-                          const std::vector<Box>& boxes_b, F&& f) {
+void for_each_overlapping(const EmbreeScene& a, std::span<const Box> boxes_a, const EmbreeScene& b,
+                          std::span<const Box> boxes_b, F&& f) {
   const bool self = &a == &b;
   auto candidate = [&](unsigned i, unsigned j) {
     if ((!self || i < j) && boxes_a[i].overlaps(boxes_b[j])) f(int32_t(i), int32_t(j));
@@ -309,8 +309,11 @@ void for_each_overlapping(const EmbreeScene& a, const std::vector<Box>& boxes_a,
 }
 
 // Calls f(i, j), i < j, for every pair of triangles whose boxes overlap, as for_each_overlapping.
+// With a progress, the boxes are met a block at a time against all of them, its fraction
+// advanced and its cancel seen after each block: a wire much thicker than the gaps of its
+// curve has billions of pairs (minutes), and Embree's query cannot be stopped midway.
 template <class F>
-void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F&& f) {
+void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, Progress* progress, F&& f) {
   if (tris.corners.empty()) return;
   std::vector<int32_t> all(tris.corners.size());
   std::iota(all.begin(), all.end(), 0);
@@ -324,7 +327,17 @@ void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F
   }
   EmbreeScene scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
   add_boxes(scene, boxes);
-  for_each_overlapping(scene, boxes, scene, boxes, f);
+  if (!progress) return for_each_overlapping(scene, boxes, scene, boxes, f);
+  constexpr size_t block = 8192;
+  for (size_t first = 0; first < boxes.size(); first += block) {
+    progress->advance(double(first) / double(boxes.size()));
+    const std::span<const Box> part(boxes.data() + first, std::min(block, boxes.size() - first));
+    EmbreeScene part_scene("printability", RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_LOW);
+    add_boxes(part_scene, part);
+    for_each_overlapping(part_scene, part, scene, boxes, [&](int32_t i, int32_t j) {
+      if (int32_t(first) + i < j) f(int32_t(first) + i, j);
+    });
+  }
 }
 
 // The first intersecting pair in the order of PrintabilityReport::first_intersection:
@@ -332,11 +345,11 @@ void for_each_overlapping_pair(const PolygonMesh& mesh, const Triangles& tris, F
 // order; each one not below the best found so far is dismissed untested, and the best
 // only ever decreases, so the answer is that least pair whatever the timing.
 std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Triangles& tris,
-                                               const std::vector<uint8_t>& skip) {
+                                               const std::vector<uint8_t>& skip, Progress* progress) {
   const auto key = [](int32_t i, int32_t j) { return uint64_t(uint32_t(i)) << 32 | uint32_t(j); };
   constexpr uint64_t none = std::numeric_limits<uint64_t>::max();
   std::atomic<uint64_t> best{none};
-  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
+  for_each_overlapping_pair(mesh, tris, progress, [&](int32_t i, int32_t j) {
     const uint64_t k = key(i, j);
     if (k >= best.load(std::memory_order_relaxed) || skip[size_t(i)] || skip[size_t(j)] ||
         tris.face[size_t(i)] == tris.face[size_t(j)] || !intersect(mesh, tris, i, j))
@@ -353,7 +366,7 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
 // Marks in `hit` both triangles of every intersecting pair.
 void mark_intersecting(const PolygonMesh& mesh, const Triangles& tris, const std::vector<uint8_t>& skip,
                        std::vector<uint8_t>& hit) {
-  for_each_overlapping_pair(mesh, tris, [&](int32_t i, int32_t j) {
+  for_each_overlapping_pair(mesh, tris, nullptr, [&](int32_t i, int32_t j) {
     if (skip[size_t(i)] || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)]) return;
     // Threads share the flags; any of them writes only 1, so relaxed order is enough.
     std::atomic_ref<uint8_t> hit_i(hit[size_t(i)]), hit_j(hit[size_t(j)]);
@@ -416,7 +429,7 @@ void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
 // depend on which of several triangles tied at it Embree's tree reports, so the result
 // does not depend on the number of threads the tree was built with.
 void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::vector<int8_t>& inward, bool gaps,
-                   PrintabilityReport& report) {
+                   PrintabilityReport& report, Progress* progress) {
   const int32_t nv = mesh.num_vertices();
   // Float, and no per-vertex result kept (a reduction instead): on large meshes the
   // cost is mostly in touching fresh memory.
@@ -492,6 +505,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
   const Both least = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, order.size(), 1024), Both{Least{INFINITY, -1}, Least{INFINITY, -1}},
       [&](const tbb::blocked_range<size_t>& r, Both best) {
+        check_progress(progress);
         VertexRayContext context;
         rtcInitIntersectContext(&context.context);
         context.corners = tris.corners.data();
@@ -547,7 +561,7 @@ bool PrintabilityReport::printable() const {
          std::all_of(components.begin(), components.end(), [](const SolidComponent& k) { return k.volume > 0; });
 }
 
-PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options) {
+PrintabilityReport check_printability(const PolygonMesh& mesh, const PrintabilityOptions& options, Progress* progress) {
   const MeshReport topology = inspect(mesh);
   if (topology.out_of_range_indices > 0)
     throw InputError("mesh has " + std::to_string(topology.out_of_range_indices) + " face indices out of range");
@@ -587,7 +601,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     report.self_intersections_checked = true;
   } else if (options.self_intersections) {
     report.self_intersections_checked = true;
-    report.first_intersection = first_intersecting_pair(mesh, tris, skip);
+    report.first_intersection = first_intersecting_pair(mesh, tris, skip, progress);
     report.self_intersecting = report.first_intersection[0] >= 0;
   }
   if (options.thickness && report.boundary_edges == 0 && !report.components.empty()) {
@@ -595,7 +609,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     std::vector<int8_t> inward(size_t(mesh.num_faces()), 0);
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       if (const int32_t k = topology.face_components[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
-    min_thickness(mesh, tris, inward, options.nozzle > 0, report);
+    min_thickness(mesh, tris, inward, options.nozzle > 0, report, progress);
     if (options.nozzle > 0 && !report.bounding_box.empty()) {
       // Scaling the whole mesh scales both; the larger of the two factors does.
       const double factor = std::max(2 * options.nozzle / report.min_thickness, options.nozzle / report.min_gap);
