@@ -267,9 +267,9 @@ TEST(IoWrite, MissingFolderIsAnIOErrorAndCreatesNothing) {
 TEST(IoWrite, UnknownExtensionIsAUsageErrorAndCreatesNothing) {
   const fs::path dir = output_dir();
   EXPECT_EQ(test::message_of<UsageError>([&] { write_mesh(mixed_mesh(), dir / "m.xyz"); }),
-            (dir / "m.xyz").string() + ": unknown mesh format '.xyz' (expected .obj, .ply, .stl, .off, .gltf, .glb or .3mf)");
+            (dir / "m.xyz").string() + ": unknown mesh format '.xyz' (Meander reads .obj, .ply, .stl, .off, .gltf and .glb, and writes those and .3mf)");
   EXPECT_EQ(test::message_of<UsageError>([&] { write_mesh(mixed_mesh(), dir / "m"); }),
-            (dir / "m").string() + ": unknown mesh format '' (expected .obj, .ply, .stl, .off, .gltf, .glb or .3mf)");
+            (dir / "m").string() + ": unknown mesh format '' (Meander reads .obj, .ply, .stl, .off, .gltf and .glb, and writes those and .3mf)");
   EXPECT_EQ(test::message_of<UsageError>([&] { write_polylines(Polylines{}, dir / "c.txt"); }),
             (dir / "c.txt").string() + ": unknown curve format '.txt' (expected .obj, .ply, .json or .svg)");
   EXPECT_TRUE(folder_listing(dir).empty());
@@ -359,7 +359,7 @@ TEST(IoRead, LargeFileRefusedEarlyNamesTheLine) {
 TEST(IoRead, UnknownExtensionIsAUsageErrorNamingThePath) {
   const fs::path path = write_file("mesh.txt", "v 0 0 0\n");
   EXPECT_EQ(test::message_of<UsageError>([&] { read_mesh(path); }),
-            path.string() + ": unknown mesh format '.txt' (expected .obj, .ply, .stl, .off, .gltf, .glb or .3mf)");
+            path.string() + ": unknown mesh format '.txt' (Meander reads .obj, .ply, .stl, .off, .gltf and .glb, and writes those and .3mf)");
 }
 
 TEST(IoRead, ExtensionIsCaseInsensitive) {

@@ -33,7 +33,7 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   if (extension == ".gltf" || extension == ".glb") return MeshFormat::gltf;
   if (extension == ".3mf") return MeshFormat::threemf;
   throw UsageError(path.string() + ": unknown mesh format '" + extension +
-                   "' (expected .obj, .ply, .stl, .off, .gltf, .glb or .3mf)");
+                   "' (Meander reads .obj, .ply, .stl, .off, .gltf and .glb, and writes those and .3mf)");
 }
 
 PolygonMesh read_mesh(const std::filesystem::path& path) {
