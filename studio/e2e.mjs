@@ -1,12 +1,18 @@
 // End-to-end test of the studio in a real browser (Playwright driving Debian's Chromium):
 //   node e2e.mjs MEANDER_BINARY OUTPUT_FOLDER
-// Starts `meander serve` on a free port, loads the demo model, turns the spacing on and
-// moves its slider and the branches slider, switches to a variable wire, moves the s slider and checks the wire in the scene changed, downloads the STL
-// and checks it is a valid binary STL, shows a duotone, shows a bad file's error, and saves
-// screenshots to OUTPUT_FOLDER/studio_e2e.png and studio_e2e_duotone.png. Exits 0 with a
-// message, without testing, only when Chromium is not installed and CI is not set.
+// Starts `meander serve --test-hooks` on a free port; checks the welcome, loads a mesh by
+// keyboard alone and the demo model, turns the spacing on and moves its slider and the
+// branches slider, switches to a variable wire, moves the s slider and checks the wire in
+// the scene changed, downloads the STL and checks it is a valid binary STL; cancels a job
+// held on the server by a newer change and by Stop; shows a full result refused as too
+// large; shows a duotone; restores the settings from the URL after a reload; lays the
+// page out 390 px wide; runs axe-core (no serious or critical violation) on each state;
+// shows a bad file's error; and saves screenshots to OUTPUT_FOLDER (studio_e2e*.png).
+// Exits 0 with a message, without testing, only when Chromium is not installed and CI is
+// not set.
 import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
@@ -32,7 +38,7 @@ function check(condition, message) {
   if (!condition) throw new Error(`studio e2e: ${message}`);
 }
 
-const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const server = spawn(binary, ['serve', '--port', '0', '--test-hooks'], { stdio: ['ignore', 'pipe', 'inherit'] });
 // Whatever fails below, the server goes with this process.
 process.on('exit', () => server.kill('SIGTERM'));
 const url = await new Promise((resolve, reject) => {
@@ -66,13 +72,47 @@ try {
   await page.goto(url);
   check(await page.$('#demo') !== null, 'the page is not built: run `make studio` (npm ci and vite build in studio/)');
 
-  // Idle (nothing in flight, queued or about to be asked), with a later revision than
-  // the given one on screen.
+  // Idle (nothing in flight or about to be asked), with a later revision than the given
+  // one on screen.
   const settled = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r, after);
+  const revisionNow = () => page.evaluate(() => window.studio.state.revision);
+
+  // axe-core in the page: no serious or critical violation of the rules it checks.
+  const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
+  const accessible = async (where) => {
+    if (!await page.evaluate(() => window.axe !== undefined)) await page.addScriptTag({ content: axeSource });
+    const violations = await page.evaluate(async () => (await window.axe.run(document, { resultTypes: ['violations'] })).violations
+      .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+      .map((v) => `${v.id} (${v.impact}): ${v.nodes.map((n) => n.target.join(' ')).slice(0, 3).join(', ')}`));
+    check(violations.length === 0, `axe-core, ${where}: ${violations.join('; ')}`);
+  };
+
+  // The first impression: a welcome in the view, the favicon, and nothing inaccessible.
+  check(await page.isVisible('#welcome') && await page.isVisible('#welcome-demo'), 'the empty view welcomes with what to do');
+  const favicon = await page.evaluate(async () => (await fetch(document.querySelector('link[rel=icon]').href)).status);
+  check(favicon === 200, `the favicon is served (HTTP ${favicon})`);
+  await accessible('welcome');
+
+  // A keyboard alone opens a mesh: Tab reaches the open button, Enter opens the file chooser.
+  const torus = path.join(outputFolder, 'studio_e2e_torus.obj');
+  await new Promise((resolve, reject) => spawn(binary, ['generate', 'torus', '--faces', '400', '-o', torus], { stdio: 'ignore' })
+    .on('exit', (code) => (code === 0 ? resolve() : reject(new Error(`meander generate exited with ${code}`)))));
+  let tabs = 0;
+  while (await page.evaluate(() => document.activeElement?.id) !== 'drop') {
+    check(++tabs < 20, 'Tab never reaches the button that opens a mesh');
+    await page.keyboard.press('Tab');
+  }
+  const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.keyboard.press('Enter')]);
+  await chooser.setFiles(torus);
+  await settled(0);
+  const opened = await page.textContent('#mesh-name');
+  check(opened.startsWith('studio_e2e_torus.obj: ') && !await page.isVisible('#welcome'), `opened by keyboard: ${opened}`);
 
   await page.click('#demo');
-  await settled(0);
+  await page.waitForFunction(() => document.getElementById('mesh-name').textContent.startsWith('pretzel.obj'));
+  await page.waitForFunction(() => window.studio.idle() && window.studio.state.stats && !window.studio.state.stats.preview);
   check((await page.evaluate(() => window.studio.resultInfo())).lines, 'the demo model first shows its curve');
+  await accessible('the demo\'s curve');
 
   // Size and density: turning the spacing on shows the measured median gap beside the
   // slider's value; moving the slider (log scale) changes it; the branches slider sets the
@@ -140,7 +180,7 @@ try {
   await slide('input');
   await settled(before.revision);
   const preview = await page.evaluate(() => ({ stats: window.studio.state.stats, revision: window.studio.state.revision,
-    download: document.querySelector('a[data-file="result.stl"]').classList.contains('disabled') }));
+    download: document.querySelector('a[data-file="result.stl"]').getAttribute('aria-disabled') === 'true' }));
   check(preview.stats.preview === true && preview.stats.watertight === undefined && preview.download,
     `dragging s shows a preview without the report and no download (${JSON.stringify(preview)})`);
   await slide('change');
@@ -174,10 +214,72 @@ try {
   });
   const seedRevision = await page.evaluate(() => window.studio.state.revision);
   await page.fill('#seed', '12345');
+  check(await page.evaluate(() => window.studio.idle()), 'typing in a number field asks for nothing until Enter');
+  await page.press('#seed', 'Enter');
   await settled(seedRevision);
   const seen = await page.evaluate(() => window.seenStats);
   check(seen.length >= 2 && seen[0].startsWith('preview') && seen.at(-1) === 'full result',
     `a seed change shows a preview, then the full result (stats seen: ${JSON.stringify(seen)})`);
+
+  // Cancel and replace: a job held on the server (the test hook: no test waits on a slow
+  // job) is cancelled by a newer change, and the page shows the newer result.
+  const heldRevision = await revisionNow();
+  await page.evaluate(() => window.studio.holdNext());
+  await page.fill('#seed', '7');
+  await page.press('#seed', 'Enter');
+  await page.waitForFunction(() => !document.getElementById('progress').hidden &&
+    /^Making a preview: preparing the slabs/.test(document.getElementById('progress-text').textContent));
+  check(await page.isVisible('#stop'), 'a job in flight shows its stage and a Stop button');
+  await slide('change');
+  await page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r && !window.studio.state.stats.preview,
+    heldRevision);
+  const replaced = await page.evaluate(() => ({ error: document.getElementById('error').hidden ? null : document.getElementById('error').textContent,
+    progress: document.getElementById('progress').hidden, of: document.querySelector('#stats td').textContent }));
+  check(replaced.error === null && replaced.progress && replaced.of === 'full result',
+    `a newer change replaces the held job and shows its full result (${JSON.stringify(replaced)})`);
+  const busyOnServer = () => page.evaluate(async () => (await (await fetch(`/api/progress/${window.studio.state.session}`)).json()).busy);
+  check(!await busyOnServer(), 'the held job is gone from the server');
+
+  // Stop: the held job is cancelled on the server and the view keeps what it showed.
+  const beforeStop = await revisionNow();
+  await page.evaluate(() => window.studio.holdNext());
+  await page.fill('#seed', '8');
+  await page.press('#seed', 'Enter');
+  await page.waitForSelector('#stop', { state: 'visible' });
+  await page.click('#stop');
+  await page.waitForFunction(() => window.studio.idle());
+  const stopped = await page.evaluate(() => ({ notice: document.getElementById('notice').hidden ? null : document.getElementById('notice-text').textContent,
+    offer: !document.getElementById('make-full').hidden,
+    download: document.querySelector('a[data-file="result.stl"]').getAttribute('aria-disabled') }));
+  check(stopped.notice?.startsWith('Stopped') && stopped.offer && stopped.download === 'true' && await revisionNow() === beforeStop,
+    `Stop keeps the view, says so, offers the full result and no download of the older one (${JSON.stringify(stopped)})`);
+  await page.waitForFunction(async () => !(await (await fetch(`/api/progress/${window.studio.state.session}`)).json()).busy);
+  await page.click('#make-full');
+  await page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r && !window.studio.state.stats.preview, beforeStop);
+  check(await page.isHidden('#notice'), 'the full result made, the notice goes');
+
+  // A full result refused as too large (the server's --max-result) after its preview:
+  // the page says the view is the preview and why, and offers no download.
+  const beforeRefusal = await revisionNow();
+  await page.evaluate(() => {
+    const levels = document.getElementById('levels');
+    levels.value = '6';
+    levels.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  await settled(beforeRefusal);
+  await page.evaluate(() => document.getElementById('levels').dispatchEvent(new Event('change', { bubbles: true })));
+  await page.waitForSelector('#error:not([hidden])');
+  await page.waitForFunction(() => window.studio.idle());
+  const refused = await page.evaluate(() => ({ of: document.querySelector('#stats td').textContent,
+    error: document.getElementById('error').textContent, notice: document.getElementById('notice').hidden ? null : document.getElementById('notice-text').textContent,
+    download: document.querySelector('a[data-file="result.stl"]').getAttribute('aria-disabled') }));
+  check(refused.of === 'preview (the full result was refused)' && refused.error.includes('--max-result') &&
+    refused.notice?.includes('refused') && refused.download === 'true', `a refused full result leaves a clear state (${JSON.stringify(refused)})`);
+  const beforeLevels = await revisionNow();
+  await sliderTo('levels', '0');
+  await full(beforeLevels);
+  check(await page.isHidden('#error') && await page.isHidden('#notice'), 'a result made clears the refusal');
+  await accessible('a variable wire');
 
   // Duotone: a textured surface in the scene (texture size kept small for speed).
   const wireRevision = await page.evaluate(() => window.studio.state.revision);
@@ -198,6 +300,46 @@ try {
   await page.selectOption('#tiles', 'truchet');
   await settled(await page.evaluate(() => window.studio.state.revision));
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_duotone.png') });
+
+  // The settings live in the URL (a link shares them) and survive a reload; undo and
+  // redo step through the changes.
+  const search = await page.evaluate(() => location.search);
+  check(search.includes('mode=duotone') && search.includes('texture-size=256') && !search.includes('tiles='),
+    `the URL holds the settings that differ from the defaults: ${search}`);
+  await page.reload();
+  await page.waitForSelector('#welcome');
+  const restored = await page.evaluate(() => ({ mode: document.getElementById('mode').value,
+    size: document.getElementById('texture-size').value, seed: document.getElementById('seed').value,
+    duotone: !document.querySelector('section[data-modes="duotone"]').hidden }));
+  check(restored.mode === 'duotone' && restored.size === '256' && restored.seed === '8' && restored.duotone,
+    `a reload restores the settings (${JSON.stringify(restored)})`);
+  await page.selectOption('#tiles', 'dots');
+  await page.focus('#fit');
+  await page.keyboard.press('Control+z');
+  check(await page.inputValue('#tiles') === 'truchet' && !(await page.evaluate(() => location.search)).includes('tiles='), 'Ctrl+Z undoes the change of tiles');
+  await page.keyboard.press('Control+Shift+z');
+  check(await page.inputValue('#tiles') === 'dots', 'Ctrl+Shift+Z redoes it');
+  await page.click('#undo');
+  check(await page.inputValue('#tiles') === 'truchet', 'the Undo button undoes too');
+
+  // A phone, 390 px wide: the view keeps most of the screen, the settings fold under
+  // their button, the stats stay in the view.
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.click('#welcome-demo');
+  await page.waitForFunction(() => window.studio.idle() && window.studio.state.stats && !window.studio.state.stats.preview);
+  const phone = await page.evaluate(() => {
+    const box = (id) => document.getElementById(id).getBoundingClientRect();
+    return { view: box('view').height, main: box('view').bottom, stats: box('stats').bottom, statsTop: box('stats').top,
+      folded: document.getElementById('controls').offsetParent === null, toggle: box('panel-toggle').width > 0 };
+  });
+  check(phone.view >= 0.55 * 844 && phone.stats <= phone.main && phone.folded && phone.toggle,
+    `at 390 px the view keeps most of the screen and the stats stay in it (${JSON.stringify(phone)})`);
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_390.png') });
+  await accessible('390 px');
+  await page.click('#panel-toggle');
+  check(await page.isVisible('#mode'), 'the Settings button unfolds the settings');
+  await accessible('390 px with the settings');
+  await page.setViewportSize({ width: 1280, height: 800 });
 
   // A bad file: the page shows the reader's precise message and the server keeps going.
   await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });

@@ -122,7 +122,10 @@ function fit() {
   const target = resultObject ?? surfaceObject;
   if (!target) return;
   const sphere = new THREE.Box3().setFromObject(target).getBoundingSphere(new THREE.Sphere());
-  const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+  // The narrower of the two fields of view frames it (a phone's view is taller than wide).
+  const vertical = THREE.MathUtils.degToRad(camera.fov);
+  const horizontal = 2 * Math.atan(Math.tan(vertical / 2) * camera.aspect);
+  const distance = sphere.radius / Math.sin(Math.min(vertical, horizontal) / 2) * 1.05;
   const direction = camera.position.clone().sub(controls.target).normalize();
   controls.target.copy(sphere.center);
   camera.position.copy(sphere.center).addScaledVector(direction, distance);
@@ -136,7 +139,8 @@ function fit() {
 function applySurfaceStyle() {
   if (!surfaceObject) return;
   const style = $('surface').value;
-  surfaceObject.visible = style !== 'off';
+  // A duotone is the surface itself, painted: drawn alone.
+  surfaceObject.visible = style !== 'off' && resultObject?.material !== duotoneMaterial;
   surfaceMaterial.transparent = style === 'faint';
   surfaceMaterial.opacity = style === 'faint' ? 0.3 : 1;
   surfaceMaterial.depthWrite = style !== 'faint';
@@ -145,15 +149,23 @@ function applySurfaceStyle() {
 }
 
 // ---- state and the API ------------------------------------------------------------------
-const state = { session: null, revision: 0, busy: false, pending: false, lastUpdateMs: null, phases: null, error: null, stats: null,
-  surfaceBox: null };
+const state = { session: null, revision: 0, busy: false, lastUpdateMs: null, phases: null, error: null, stats: null,
+  surfaceBox: null, full: null, stale: false };
+// What became of the full result asked after the last change (state.full): null (it is
+// on screen, or none was asked), 'pending', 'stopped', 'refused' or 'failed'; and whether
+// the view shows a result of other settings than the controls' (state.stale): a preview,
+// or a result kept when the newer one was stopped or failed. Only a result that is not
+// stale is offered for download.
 window.studio = {
   state,
   // The latency script (latency.mjs) times a preview and a full update through this.
-  make: (preview) => make(preview),
-  // Nothing in flight, queued or about to be asked (a change within the debounce): what
-  // the browser test waits for, so that no pause of a busy machine can fool it.
-  idle: () => !state.busy && !state.pending && debounce === null,
+  make: (preview) => update([preview ? 'preview' : 'full']),
+  // Nothing in flight or about to be asked (a change within the debounce): what the
+  // browser test waits for, so that no pause of a busy machine can fool it.
+  idle: () => !state.busy && debounce === null,
+  // For the browser test: the next request's job waits on the server until cancelled
+  // (a server started with --test-hooks), so that a test holds it in flight.
+  holdNext: () => { holdNext = true; },
   // What the browser test reads: the result in the scene.
   resultInfo() {
     if (!resultObject) return null;
@@ -168,6 +180,7 @@ window.studio = {
     };
   },
 };
+let holdNext = false;
 
 function showError(message) {
   state.error = message;
@@ -175,48 +188,226 @@ function showError(message) {
   $('error').hidden = !message;
 }
 
+function showNotice(message, offerFull = false) {
+  $('notice-text').textContent = message ?? '';
+  $('make-full').hidden = !offerFull;
+  $('notice').hidden = !message;
+}
+
+const unreachable = 'The studio\'s server does not answer: it may have stopped. Run `meander serve` again, then reload this page.';
+
+// The answer, or an Error with the server's message (status and whether the server
+// cancelled the job kept on it).
 async function api(path, options) {
-  const response = await fetch(path, options);
+  let response;
+  try {
+    response = await fetch(path, options);
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    throw new Error(unreachable);
+  }
   if (!response.ok) {
-    let message = `HTTP ${response.status}`;
-    try { message = (await response.json()).error ?? message; } catch { /* not JSON: keep the status */ }
-    throw new Error(message);
+    let message = `HTTP ${response.status}`, cancelled = false;
+    try {
+      const body = await response.json();
+      message = body.error ?? message;
+      cancelled = body.cancelled === true;
+    } catch { /* not JSON: keep the status */ }
+    if (response.status === 404 && message.startsWith('unknown session')) message = 'This mesh is no longer on the server (it was restarted, or many meshes were opened since): open it again.';
+    throw Object.assign(new Error(message), { status: response.status, cancelled });
   }
   return response;
 }
 
-let progressTimer = null;
-function showProgress(on) {
+const plural = (n, one, many) => `${n.toLocaleString()} ${n === 1 ? one : many}`;
+
+// ---- progress and Stop --------------------------------------------------------------------
+// The server's stage names, as a person reads them.
+const stageNames = {
+  remesh: 'remeshing evenly', 'slab mesh': 'preparing the slabs', connectivity: 'connecting the faces',
+  quadrangulate: 'quadrangulating', cycle: 'finding the cycle', smooth: 'smoothing the curve', relax: 'evening the curve',
+  project: 'placing the curve on the surface', evenness: 'measuring the gaps', radius: 'finding the radius',
+  wire: 'making the wire', report: 'checking printability', duotone: 'colouring the quads', tiles: 'painting the tiles',
+  subdivide: 'subdividing', 'separating curves': 'tracing the curve',
+};
+let progressTimer = null, progressPoll = null;
+function showProgress(kind) {
   clearTimeout(progressTimer);
-  // Quick updates do not flash the indicator; longer work shows it.
-  if (on) progressTimer = setTimeout(() => { $('progress').hidden = false; }, 150);
-  else $('progress').hidden = true;
+  clearInterval(progressPoll);
+  if (!kind) {
+    $('progress').hidden = true;
+    return;
+  }
+  // Quick updates do not flash the indicator; longer work shows it, with the stage the
+  // server is at.
+  const label = kind === 'full' ? 'Making the full result' : kind === 'preview' ? 'Making a preview' : 'Opening the mesh';
+  const fill = $('progress').querySelector('.fill');
+  progressTimer = setTimeout(() => {
+    $('progress-text').textContent = `${label}…`;
+    fill.classList.remove('known');
+    fill.style.width = '100%';
+    $('stop').hidden = kind === 'upload';
+    $('progress').hidden = false;
+    if (kind === 'upload' || !state.session) return;
+    const session = state.session;
+    progressPoll = setInterval(async () => {
+      try {
+        const p = await (await fetch(`/api/progress/${session}`)).json();
+        if (!p.busy || $('progress').hidden) return;
+        const known = p.fraction >= 0;
+        $('progress-text').textContent = `${label}: ${stageNames[p.stage] ?? p.stage}${known ? ` ${Math.round(p.fraction * 100)}%` : ''}…`;
+        fill.classList.toggle('known', known);
+        fill.style.width = known ? `${Math.max(2, p.fraction * 100)}%` : '100%';
+      } catch { /* the request itself reports a lost server */ }
+    }, 250);
+  }, 150);
 }
-function setBusy(busy) {
-  state.busy = busy;
-  showProgress(busy);
+
+// ---- requests: each change replaces the work in flight ----------------------------------
+// The chain of requests in flight: a preview then the full result, or one of them. A
+// new change aborts it (the server cancels the job of an aborted request, and any newer
+// request for the session cancels the older one's).
+let job = null;
+
+async function update(kinds) {
+  if (!state.session) return;
+  job?.controller.abort();
+  const ticket = job = { controller: new AbortController(), kind: null };
+  state.busy = true;
+  state.stale = true;
+  if (kinds.includes('full')) state.full = 'pending';
+  try {
+    for (const kind of kinds) {
+      ticket.kind = kind;
+      showProgress(kind);
+      await makeOne(kind === 'preview', ticket);
+      if (ticket !== job) return;
+    }
+    showNotice(null);
+  } catch (e) {
+    if (ticket !== job) return; // replaced: the newer request reports
+    if (e.name === 'AbortError' || e.cancelled) return; // stopped: stop() says so
+    const full = ticket.kind === 'full';
+    state.full = e.status === 413 ? 'refused' : 'failed';
+    const shown = state.stats?.preview ? 'the preview' : 'the result before the change';
+    if (state.stats) {
+      showStats(state.stats);
+      showNotice(state.full === 'refused'
+        ? `The view shows ${shown}: the ${full ? 'full result' : 'preview'} was refused as too large. Lower the setting the message names.`
+        : `The view shows ${shown}: the ${full ? 'full result' : 'preview'} failed (see the message).`);
+    }
+    showError(e.message);
+  } finally {
+    if (ticket === job) {
+      job = null;
+      state.busy = false;
+      showProgress(null);
+      updateDownloads();
+    }
+  }
+}
+
+// One request: the result made, its view fetched and drawn.
+async function makeOne(preview, ticket) {
+  const { signal } = ticket.controller;
+  const start = performance.now();
+  const phases = {};
+  let mark = start;
+  const lap = (name) => { const now = performance.now(); phases[name] = now - mark; mark = now; };
+  const body = { ...params(), preview };
+  if (holdNext) {
+    body.hold = true;
+    holdNext = false;
+  }
+  const stats = await (await api('/api/make', {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body), signal,
+  })).json();
+  lap('make');
+  const buffer = await (await api(`/api/result/${state.session}/view.bin`, { signal })).arrayBuffer();
+  lap('fetch');
+  if (ticket !== job) return;
+  const { geometry, lines, textured } = parseView(buffer);
+  lap('parse');
+  // The atlas depends on the tile options alone (stats.texture names them): it is
+  // fetched only when they change, not on every seed or subdivision change.
+  if (textured && stats.texture !== loadedTexture) {
+    const texture = await new THREE.TextureLoader().loadAsync(`/api/result/${state.session}/texture.png?r=${stats.revision}`);
+    if (ticket !== job) return;
+    texture.colorSpace = THREE.SRGBColorSpace;
+    texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
+    duotoneMaterial.map?.dispose();
+    duotoneMaterial.map = texture;
+    duotoneMaterial.needsUpdate = true;
+    loadedTexture = stats.texture;
+    lap('texture');
+  }
+  const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
+  resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
+  applySurfaceStyle();
+  // The update ends when the frame showing it is drawn: the geometry's upload and the
+  // first draw are part of it.
+  draw();
+  renderer.getContext().finish();
+  lap('draw');
+  state.lastUpdateMs = performance.now() - start;
+  state.phases = phases;
+  state.revision = stats.revision;
+  state.stats = stats;
+  if (!preview) state.full = null;
+  state.stale = preview;
+  showStats(stats);
+  showError(null);
+}
+
+// Stops the work in flight: the view keeps what it shows.
+function stop() {
+  if (!job) return;
+  job.controller.abort();
+  job = null;
+  state.busy = false;
+  showProgress(null);
+  fetch(`/api/cancel/${state.session}`, { method: 'POST' }).catch(() => {});
+  state.full = 'stopped';
+  if (state.stats) showStats(state.stats);
+  showNotice(`Stopped: the view shows ${state.stats?.preview ? 'the preview' : 'the result before the change'}, and downloads wait for the full result.`, true);
+  updateDownloads();
 }
 
 async function loadSurface(reply) {
   state.session = reply.session;
   state.revision = 0;
+  state.stats = null;
   const repairs = reply.repairs.length ? ` — repaired: ${reply.repairs.join('; ')}` : '';
-  $('mesh-name').textContent = `${reply.name}: ${reply.faces} faces${repairs}`;
+  $('mesh-name').textContent = `${reply.name}: ${plural(reply.faces, 'face', 'faces')}${repairs}`;
   const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
   const { geometry } = parseView(buffer);
   state.surfaceBox = geometry.boundingBox.clone();
   showSpacing();
   surfaceObject = replace(surfaceObject, new THREE.Mesh(geometry, surfaceMaterial));
   resultObject = replace(resultObject, null);
+  $('welcome').hidden = true;
+  $('stats').innerHTML = '';
   applySurfaceStyle();
   fit();
-  await make();
+  await update(['preview', 'full']);
 }
 
 async function upload(file) {
-  const info = await (await api('/api/info')).json();
+  showNotice(null);
+  let info;
+  try {
+    info = await (await api('/api/info')).json();
+  } catch (e) {
+    showError(e.message);
+    return;
+  }
+  const extension = file.name.includes('.') ? file.name.slice(file.name.lastIndexOf('.')).toLowerCase() : '';
+  if (!info.formats.includes(extension)) {
+    showError(`${file.name}: not a mesh file the studio reads (it reads ${info.formats.join(', ')})`);
+    return;
+  }
   if (file.size > info.max_upload) {
-    showError(`upload too large: ${file.size} bytes (this server's --max-upload is ${info.max_upload} bytes)`);
+    showError(`${file.name}: upload too large: ${file.size} bytes (this server's --max-upload is ${info.max_upload} bytes)`);
     return;
   }
   const form = new FormData();
@@ -225,8 +416,12 @@ async function upload(file) {
 }
 
 async function openSurface(request) {
+  job?.controller.abort();
+  job = null;
   showError(null);
-  showProgress(true);
+  showNotice(null);
+  showProgress('upload');
+  state.busy = true;
   let reply;
   try {
     reply = await (await request()).json();
@@ -234,7 +429,8 @@ async function openSurface(request) {
     showError(e.message);
     return;
   } finally {
-    showProgress(false);
+    state.busy = false;
+    showProgress(null);
   }
   try {
     await loadSurface(reply);
@@ -296,71 +492,13 @@ function params() {
   };
 }
 
-// One request at a time; changes made meanwhile are coalesced: at most one preview and
-// one full result follow, the preview first. A preview is the server's quick version:
-// fewer samples and levels, no printability report.
-async function make(preview = false) {
-  if (!state.session) return;
-  if (state.busy) {
-    const asked = preview ? 'preview' : 'full';
-    state.pending = !state.pending || state.pending === asked ? asked : 'both';
-    return;
-  }
-  state.pending = false;
-  setBusy(true);
-  const start = performance.now();
-  const phases = {};
-  let mark = start;
-  const lap = (name) => { const now = performance.now(); phases[name] = now - mark; mark = now; };
-  try {
-    const stats = await (await api('/api/make', {
-      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...params(), preview }),
-    })).json();
-    lap('make');
-    const buffer = await (await api(`/api/result/${state.session}/view.bin`)).arrayBuffer();
-    lap('fetch');
-    const { geometry, lines, textured } = parseView(buffer);
-    lap('parse');
-    // The atlas depends on the tile options alone (stats.texture names them): it is
-    // fetched only when they change, not on every seed or subdivision change.
-    if (textured && stats.texture !== loadedTexture) {
-      const texture = await new THREE.TextureLoader().loadAsync(`/api/result/${state.session}/texture.png?r=${stats.revision}`);
-      texture.colorSpace = THREE.SRGBColorSpace;
-      texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
-      duotoneMaterial.map?.dispose();
-      duotoneMaterial.map = texture;
-      duotoneMaterial.needsUpdate = true;
-      loadedTexture = stats.texture;
-      lap('texture');
-    }
-    const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
-    resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
-    // The update ends when the frame showing it is drawn: the geometry's upload and the
-    // first draw are part of it.
-    draw();
-    renderer.getContext().finish();
-    lap('draw');
-    state.lastUpdateMs = performance.now() - start;
-    state.phases = phases;
-    state.revision = stats.revision;
-    state.stats = stats;
-    showStats(stats);
-    showError(null);
-  } catch (e) {
-    showError(e.message);
-  } finally {
-    setBusy(false);
-    updateDownloads();
-    const next = state.pending;
-    if (next) make(next !== 'full');
-    if (next === 'both') make(false);
-  }
-}
-
 function showStats(stats) {
   const yesNo = (b) => (b ? 'yes' : 'no');
+  const what = { stopped: 'was stopped', refused: 'was refused', failed: 'failed' }[state.full];
+  const of = stats.preview ? (state.full === 'pending' ? 'preview (the full result follows)' : what ? `preview (the full result ${what})` : 'preview')
+    : state.stale && what ? `the result before the change (the new one ${what})` : 'full result';
   const rows = [
-    ['stats of', stats.preview ? 'preview (the full result follows)' : 'full result'],
+    ['stats of', of],
     ['triangles', stats.triangles.toLocaleString()],
     [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
     ['curve length', stats.curve_length.toPrecision(5)],
@@ -376,10 +514,10 @@ function showStats(stats) {
     }
     // As `meander wire --method variable` notes: the mesh it was made on had large polygons
     // split and caps flipped (or cut off on the boundary).
-    if (stats.stars > 0) rows.push(['polygons split', `${stats.stars.toLocaleString()} of 5 or more sides, into triangles`]);
-    if (stats.cap_flips > 0) rows.push(['caps flipped', `${stats.cap_flips.toLocaleString()} edges (flat triangles fold the slabs)`]);
-    if (stats.cap_cuts > 0) rows.push(['caps cut off', `${stats.cap_cuts.toLocaleString()} triangles on the boundary`]);
-    if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${stats.needle_collapses.toLocaleString()} short edges (needles and folded triangles fold the slabs)`]);
+    if (stats.stars > 0) rows.push(['polygons split', `${plural(stats.stars, 'polygon', 'polygons')} of 5 or more sides, into triangles`]);
+    if (stats.cap_flips > 0) rows.push(['caps flipped', `${plural(stats.cap_flips, 'edge', 'edges')} (flat triangles fold the slabs)`]);
+    if (stats.cap_cuts > 0) rows.push(['caps cut off', `${plural(stats.cap_cuts, 'triangle', 'triangles')} on the boundary`]);
+    if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${plural(stats.needle_collapses, 'short edge', 'short edges')} (needles and folded triangles fold the slabs)`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
   }
   if (stats.gap_median !== undefined) {
@@ -387,21 +525,108 @@ function showStats(stats) {
   }
   if (stats.leaves !== undefined) rows.push(['branch tips', stats.leaves.toLocaleString()]);
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
-  $('stats').innerHTML = rows.map(([k, v]) => `<tr><th>${k}</th><td>${v}</td></tr>`).join('');
+  // On a phone only the first rows show (the stats must not cover the view).
+  $('stats').innerHTML = rows.map(([k, v], i) => `<tr${i > 2 ? ' class="detail"' : ''}><th scope="row">${k}</th><td>${v}</td></tr>`).join('');
 }
 
 function updateDownloads() {
   const curve = $('mode').value === 'curve';
   for (const a of document.querySelectorAll('#downloads a')) {
     // A preview is not offered for download: the full result follows it.
-    const enabled = state.revision > 0 && !state.stats?.preview && !(curve && a.hasAttribute('data-mesh'));
-    a.classList.toggle('disabled', !enabled);
-    a.href = enabled ? `/api/result/${state.session}/${a.dataset.file}` : '#';
-    a.toggleAttribute('download', enabled);
+    const enabled = state.revision > 0 && !state.busy && !state.stale && !(curve && a.hasAttribute('data-mesh'));
+    a.setAttribute('aria-disabled', String(!enabled));
+    if (enabled) {
+      a.href = `/api/result/${state.session}/${a.dataset.file}`;
+      a.setAttribute('download', '');
+    } else {
+      // Not a link while disabled: not in the Tab order, nothing to follow.
+      a.removeAttribute('href');
+      a.removeAttribute('download');
+    }
   }
 }
+// The render as the view shows it: the camera on screen, at the view's size.
+$('downloads').querySelector('a[data-file="render.png"]').addEventListener('click', (e) => {
+  const a = e.currentTarget;
+  if (!a.href) return;
+  const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
+  const { clientWidth: w, clientHeight: h } = container;
+  a.href = `/api/result/${state.session}/render.png?eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}` +
+    `&fov=${camera.fov}&size=${Math.max(16, Math.round(w))}x${Math.max(16, Math.round(h))}`;
+});
 
 // ---- controls -----------------------------------------------------------------------------
+// Every control the settings are made of, as the URL and the local storage keep them.
+const settingIds = ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
+  'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
+  'texture-size', 'subdivide', 'surface'];
+const valueOf = (el) => (el.type === 'checkbox' ? (el.checked ? '1' : '0') : el.value);
+const defaults = Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
+function settings() {
+  return Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
+}
+function applySettings(values) {
+  for (const id of settingIds) {
+    const el = $(id), value = values[id] ?? defaults[id];
+    if (el.type === 'checkbox') el.checked = value === '1';
+    else el.value = value;
+  }
+  previousMode = $('mode').value;
+  syncControls();
+}
+// The URL's query holds the settings that differ from the defaults: a link shares them.
+function saveSettings() {
+  const values = settings();
+  const query = new URLSearchParams(Object.entries(values).filter(([id, v]) => v !== defaults[id]));
+  history.replaceState(null, '', query.size ? `?${query}` : location.pathname);
+  try { localStorage.setItem('meander-studio', JSON.stringify(values)); } catch { /* private mode: the URL keeps them */ }
+}
+function restoreSettings() {
+  const query = new URLSearchParams(location.search);
+  let values = null;
+  if ([...query.keys()].some((k) => settingIds.includes(k))) {
+    values = Object.fromEntries([...query].filter(([k]) => settingIds.includes(k)));
+  } else {
+    try { values = JSON.parse(localStorage.getItem('meander-studio') ?? 'null'); } catch { values = null; }
+  }
+  if (values) applySettings(values);
+}
+
+// Undo and redo of parameter changes: each committed change is a snapshot.
+const past = [], future = [];
+let current = null;
+function record() {
+  const now = settings();
+  if (current && JSON.stringify(now) === JSON.stringify(current)) return;
+  if (current) past.push(current);
+  future.length = 0;
+  current = now;
+  saveSettings();
+  $('undo').disabled = past.length === 0;
+  $('redo').disabled = true;
+}
+function travel(from, to) {
+  if (from.length === 0) return;
+  to.push(current);
+  current = from.pop();
+  applySettings(current);
+  saveSettings();
+  $('undo').disabled = past.length === 0;
+  $('redo').disabled = future.length === 0;
+  changed();
+}
+$('undo').addEventListener('click', () => travel(past, future));
+$('redo').addEventListener('click', () => travel(future, past));
+document.addEventListener('keydown', (e) => {
+  // A text field keeps its own undo.
+  if (!(e.ctrlKey || e.metaKey) || e.target.matches?.('input[type=text], input[type=number]')) return;
+  const key = e.key.toLowerCase();
+  if (key === 'z' && !e.shiftKey) travel(past, future);
+  else if ((key === 'z' && e.shiftKey) || key === 'y') travel(future, past);
+  else return;
+  e.preventDefault();
+});
+
 let debounce = null;
 function changed(event) {
   clearTimeout(debounce);
@@ -411,30 +636,80 @@ function changed(event) {
   // even where the full result (a wire's printability report) takes seconds.
   const slider = event?.target?.type === 'range';
   const dragging = slider && event.type === 'input', released = slider && event.type === 'change';
+  if (!dragging) record();
+  showNotice(null);
   debounce = setTimeout(() => {
     debounce = null;
-    if (!released) make(true);
-    if (!dragging) make(false);
+    update(released ? ['full'] : dragging ? ['preview'] : ['preview', 'full']);
   }, 30);
 }
 
 function showModeControls() {
   const mode = $('mode').value;
   for (const el of document.querySelectorAll('[data-modes]')) el.hidden = !el.dataset.modes.split(' ').includes(mode);
+  showHelp();
   updateDownloads();
+}
+
+// Which control the focus or the pointer is on shows its help, the text of the
+// parameter's `--help` (GET /api/parameters, for the mode's command); the page's own
+// controls have theirs here.
+const pageHelp = {
+  mode: 'what to make: the curve, a wire or ribbon along it (constant: a tube of one radius; variable: slabs that fill the surface), or a two-colour surface split by the curve',
+  'radius-auto': 'the largest radius that keeps the wire clear of itself',
+  surface: 'how the input surface is drawn behind the result',
+  nozzle: 'the printer\'s nozzle width in millimetres: with a model size, the wire must be 2 nozzles thick and its parts a nozzle apart',
+};
+let parameterHelp = null;
+function helpFor(id) {
+  const name = $(id).dataset.help ?? id.replaceAll('-', '_');
+  const mode = $('mode').value;
+  const list = parameterHelp?.[mode === 'curve' ? 'curve' : mode === 'duotone' ? 'duotone' : 'wire'];
+  return list?.find((p) => p.name === name)?.help ?? pageHelp[id] ?? null;
+}
+function showHelp() {
+  for (const id of settingIds) {
+    const el = $(id), text = helpFor(id), help = $(`help-${id}`);
+    if (!help || !text) continue;
+    help.textContent = text;
+    el.title = text;
+  }
+}
+function addHelp() {
+  for (const id of settingIds) {
+    if (!helpFor(id) || $(`help-${id}`)) continue;
+    const el = $(id);
+    const help = document.createElement('small');
+    help.id = `help-${id}`;
+    help.className = 'help';
+    help.hidden = true;
+    // After the control, or after the row it sits in.
+    const anchor = el.parentElement.classList.contains('row') ? el.parentElement : el;
+    anchor.after(help);
+    el.setAttribute('aria-describedby', help.id);
+    const show = (on) => () => { help.hidden = !on && document.activeElement !== el; };
+    el.addEventListener('focus', show(true));
+    el.addEventListener('blur', show(false));
+    el.addEventListener('mouseenter', show(true));
+    el.addEventListener('mouseleave', show(false));
+  }
+  showHelp();
 }
 
 for (const output of document.querySelectorAll('output[for]')) {
   const input = $(output.htmlFor.value);
+  if (input.type !== 'range' || output.id) continue;
   const show = () => { output.textContent = input.value; };
   input.addEventListener('input', show);
   show();
 }
-for (const id of ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
-  'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
-  'texture-size', 'subdivide']) {
-  $(id).addEventListener('input', changed);
-  if ($(id).type === 'range') $(id).addEventListener('change', changed);
+for (const id of settingIds) {
+  if (id === 'surface') continue;
+  const el = $(id);
+  // Typed values apply on Enter or when the field is left, not at every keystroke.
+  const typed = ['text', 'number', 'color'].includes(el.type);
+  el.addEventListener(typed ? 'change' : 'input', changed);
+  if (el.type === 'range') el.addEventListener('change', changed);
 }
 // Duotone starts from its command's default quads (Catmull-Clark topology), the others
 // from dual-simplest, as `meander duotone` and `meander curve`/`wire` do. Variable wires
@@ -449,34 +724,82 @@ $('mode').addEventListener('input', () => {
   if ($('tree').value === defaultTree(previousMode)) $('tree').value = defaultTree(mode);
   previousMode = mode;
   showModeControls();
-});
-$('radius-auto').addEventListener('input', () => { $('radius').disabled = $('radius-auto').checked; });
-$('spacing-on').addEventListener('input', () => { $('spacing').disabled = !$('spacing-on').checked; });
-$('branches-on').addEventListener('input', () => { $('branches').disabled = !$('branches-on').checked; });
+}, { capture: true });
+// The enabled state of the controls that follow others.
+function syncControls() {
+  $('radius').disabled = $('radius-auto').checked;
+  $('spacing').disabled = !$('spacing-on').checked;
+  $('branches').disabled = !$('branches-on').checked;
+  for (const output of document.querySelectorAll('output[for]')) if (!output.id) output.textContent = $(output.htmlFor.value).value;
+  showSpacing();
+  showModeControls();
+  applySurfaceStyle();
+}
+for (const id of ['radius-auto', 'spacing-on', 'branches-on']) $(id).addEventListener('input', syncControls, { capture: true });
 for (const id of ['spacing', 'model-size']) $(id).addEventListener('input', showSpacing);
 $('new-seed').addEventListener('click', () => {
   $('seed').value = Math.floor(Math.random() * 2 ** 31);
   changed();
 });
-$('surface').addEventListener('input', applySurfaceStyle);
-$('fit').addEventListener('click', fit);
-$('demo').addEventListener('click', () => openSurface(() => api('/api/demo', { method: 'POST' })));
-$('file').addEventListener('change', (e) => { if (e.target.files[0]) upload(e.target.files[0]); });
-const drop = $('drop');
-for (const name of ['dragenter', 'dragover']) drop.addEventListener(name, (e) => { e.preventDefault(); drop.classList.add('over'); });
-for (const name of ['dragleave', 'drop']) drop.addEventListener(name, () => drop.classList.remove('over'));
-drop.addEventListener('drop', (e) => {
-  e.preventDefault();
-  if (e.dataTransfer.files[0]) upload(e.dataTransfer.files[0]);
+$('surface').addEventListener('input', () => {
+  applySurfaceStyle();
+  record();
 });
-showModeControls();
+$('fit').addEventListener('click', fit);
+$('stop').addEventListener('click', stop);
+$('make-full').addEventListener('click', () => {
+  showNotice(null);
+  update(['full']);
+});
+const openDemo = () => openSurface(() => api('/api/demo', { method: 'POST' }));
+$('demo').addEventListener('click', openDemo);
+$('welcome-demo').addEventListener('click', openDemo);
+for (const id of ['drop', 'welcome-open']) $(id).addEventListener('click', () => $('file').click());
+$('file').addEventListener('change', (e) => {
+  if (e.target.files[0]) upload(e.target.files[0]);
+  e.target.value = ''; // the same file again is a change too
+});
+// A file dropped anywhere on the page opens it (the browser would otherwise open the
+// file in place of the studio).
+let dragDepth = 0;
+const carriesFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes('Files');
+document.addEventListener('dragenter', (e) => {
+  if (!carriesFiles(e)) return;
+  e.preventDefault();
+  dragDepth += 1;
+  $('drop-overlay').hidden = false;
+});
+document.addEventListener('dragover', (e) => { if (carriesFiles(e)) e.preventDefault(); });
+document.addEventListener('dragleave', () => {
+  dragDepth = Math.max(0, dragDepth - 1);
+  if (dragDepth === 0) $('drop-overlay').hidden = true;
+});
+document.addEventListener('drop', (e) => {
+  e.preventDefault();
+  dragDepth = 0;
+  $('drop-overlay').hidden = true;
+  if (e.dataTransfer?.files[0]) upload(e.dataTransfer.files[0]);
+});
+// On a narrow screen the settings fold away under their button, leaving the view.
+const narrow = window.matchMedia('(max-width: 700px)');
+function foldPanel(folded) {
+  $('panel').classList.toggle('collapsed', folded);
+  $('panel-toggle').setAttribute('aria-expanded', String(!folded));
+}
+$('panel-toggle').addEventListener('click', () => foldPanel(!$('panel').classList.contains('collapsed')));
+foldPanel(narrow.matches);
+narrow.addEventListener('change', (e) => foldPanel(e.matches));
+// Leaving the page stops its work on the server.
+window.addEventListener('pagehide', () => { if (job && state.session) navigator.sendBeacon(`/api/cancel/${state.session}`); });
 
-// Each control's help is its parameter's, the text `meander curve|wire|duotone --help` gives.
+restoreSettings();
+syncControls();
+current = settings();
+saveSettings();
+updateDownloads();
+
 api('/api/parameters').then((reply) => reply.json()).then((modes) => {
-  for (const list of Object.values(modes)) {
-    for (const p of list) {
-      const label = $(p.name === 'colors' ? 'color0' : p.name.replaceAll('_', '-'))?.closest('label');
-      if (label && !label.title) label.title = p.help;
-    }
-  }
-}).catch(() => {}); // help only: the controls work without it
+  parameterHelp = modes;
+  addHelp();
+}).catch(() => addHelp()); // the page's own help still shows
+addHelp();
