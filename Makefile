@@ -9,8 +9,8 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
                    libbenchmark-dev libopenmesh-dev libtinyobjloader-dev libosd-dev libtbb-dev \
                    libembree-dev libstb-dev libturbojpeg0-dev lib3mf-dev libzip-dev libcgal-dev libtinygltf-dev \
                    clang-16 libclang-rt-16-dev
-# cpp-httplib: the studio's server (`meander serve`).
-DEBIAN_PACKAGES += libcpp-httplib-dev
+# cpp-httplib: the studio's server (`meander serve`); meshoptimizer: its compressed views.
+DEBIAN_PACKAGES += libcpp-httplib-dev libmeshoptimizer-dev
 
 .PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 

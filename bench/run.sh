@@ -160,6 +160,35 @@ printf '| bunny_closed.off at 1/50 of its diagonal <= 0.2 s | %.2f s | %s |\n' "
 time_spacing "$scratch/sphere_1m.ply" 200
 printf '| 1M-triangle sphere at 1/200 of its diagonal <= 2 s | %.2f s | %s |\n' "$seconds" "$(verdict "$seconds" 2)"
 
+# The studio's previews (docs/studio.md, Speed): studio/latency.mjs in Debian's Chromium,
+# each mode's preview after a seed change, end to end in the page, median of 3.
+echo
+echo "## Studio previews: \`node studio/latency.mjs --previews\` (end to end in the page, median of 3)"
+echo
+if command -v node > /dev/null && [ -x "${CHROMIUM:-/usr/bin/chromium}" ]; then
+  generate sphere --faces 50000 -o "$scratch/sphere_50k.ply"
+  generate sphere --faces 200000 -o "$scratch/sphere_200k.ply"
+  modes=(curve constant-ribbon constant-wire variable-ribbon:0 variable-wire:0 variable-wire:1 duotone:0)
+  for faces in 50k 200k; do
+    node studio/latency.mjs "$meander" "$scratch/sphere_$faces.ply" --previews "${modes[@]}" > "$scratch/latency_$faces.txt"
+  done
+  echo
+  echo "| preview of | 50k faces (<= 300 ms) | met | 200k faces (<= 1 s) | met |"
+  echo "|---|---:|---|---:|---|"
+  # "MODE levels L preview: N triangles, end to end X ms (...)"
+  ms() { sed -n "s/^$1 levels $2 preview: .* end to end \([0-9]*\) ms.*/\1/p" "$scratch/latency_$3.txt"; }
+  for mode in "${modes[@]}"; do
+    name=${mode%%:*}
+    levels=${mode#*:}
+    [ "$levels" = "$mode" ] && levels=1
+    small=$(ms "$name" "$levels" 50k)
+    large=$(ms "$name" "$levels" 200k)
+    echo "| $name, levels $levels | $small ms | $(verdict "$small" 300) | $large ms | $(verdict "$large" 1000) |"
+  done
+else
+  echo "node or Chromium not installed: not measured (make test installs both)"
+fi
+
 # Google Benchmark's console table (medians), without the context lines it prints first.
 gbench_table() { echo '```'; "$@" | sed -n '/^---/,$p'; echo '```'; }
 

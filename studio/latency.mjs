@@ -1,16 +1,19 @@
 // Measures the studio's live update end to end in the browser (docs/benchmarks.md):
-//   node latency.mjs MEANDER_BINARY MESH_FILE [MODE:LEVELS ...]
+//   node latency.mjs MEANDER_BINARY MESH_FILE [--previews] [MODE:LEVELS ...]
 // For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times for a full
-// result and three times for a preview (what the page asks while a slider moves) and
-// prints the median of the page's own figure: from the request leaving to the new
-// geometry in the scene (make + view.bin + parsing), and the server's share.
+// result (not with --previews) and three times for a preview (what the page asks while a
+// slider moves) and prints the median of the page's own figure: from the request leaving
+// to the new geometry in the scene (make + view.bin + decoding + the first frame drawn),
+// and the server's share.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [binary, meshFile, ...chosen] = process.argv.slice(2);
+const [binary, meshFile, ...rest] = process.argv.slice(2);
+const previewsOnly = rest[0] === '--previews';
+const chosen = previewsOnly ? rest.slice(1) : rest;
 const modes = chosen.length ? chosen.map((m) => m.split(':')).map(([mode, levels]) => [mode, Number(levels ?? 1)])
   : [['curve', 1], ['constant-ribbon', 1], ['constant-wire', 1], ['variable-ribbon', 0], ['variable-wire', 0],
     ['variable-ribbon', 1], ['variable-wire', 1], ['duotone', 0]];
@@ -35,7 +38,7 @@ try {
     let revision = await page.evaluate(() => window.studio.state.revision);
     await set('mode', mode);
     await idle(revision);
-    for (const preview of [true, false]) {
+    for (const preview of previewsOnly ? [true] : [true, false]) {
       const runs = [];
       for (let seed = 2; seed <= 4; ++seed)
         runs.push(await page.evaluate(async ([s, p]) => {

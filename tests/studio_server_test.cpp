@@ -2,12 +2,14 @@
 #include "studio_server.h"
 #include "running_server.h"
 #include "test_support.h"
+#include "view_decoder.h"
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -102,51 +104,34 @@ TEST_F(StudioServerTest, APreviewDownloadsLikeAFullResultUnderItsOwnName) {
 // What the page's parseView (studio/src/main.js) reads from view.bin, checked array by
 // array: the sizes add up, the indices are in range, a mesh has unit normals and no loop
 // in the page has to compute anything.
-struct ViewLayout {
-  uint32_t vertices = 0, quads = 0, triangles = 0, segments = 0, flags = 0;
-};
-
-ViewLayout check_view(const std::string& bytes, const std::string& what) {
-  ViewLayout view;
-  EXPECT_GE(bytes.size(), 48u) << what;
-  if (bytes.size() < 48) return view;
-  EXPECT_EQ(bytes.substr(0, 4), "MNDR") << what;
-  std::memcpy(&view, bytes.data() + 4, 20);
-  const size_t v = view.vertices, normal_bytes = view.flags & 2 ? (3 * v + 3) / 4 * 4 : 0;
-  const size_t positions = 48, normals = positions + 12 * v, uvs = normals + normal_bytes;
-  const size_t indices = uvs + (view.flags & 1 ? 8 * v : 0);
-  const size_t end = indices + 16 * size_t(view.quads) + 12 * size_t(view.triangles) + 8 * size_t(view.segments);
-  EXPECT_EQ(bytes.size(), end) << what;
-  if (bytes.size() != end) return view;
-  const bool faces = view.quads + view.triangles > 0;
+// The view decoded as the page decodes it, checked: positions in the header's box, unit
+// normals where there are faces, indices within the vertices.
+test::DecodedView check_view(const std::string& bytes, const std::string& what) {
+  test::DecodedView view = test::decode_view(bytes);
+  if (!view.ok) return view;
+  const bool faces = view.triangles > 0;
   EXPECT_EQ(view.flags & 2 ? 1 : 0, faces ? 1 : 0) << what << ": a mesh comes with its normals";
-  float box[6];
-  std::memcpy(box, bytes.data() + 24, sizeof box);
-  for (size_t i = 0; i < v; ++i) {
-    float p[3];
-    std::memcpy(p, bytes.data() + positions + 12 * i, sizeof p);
-    for (int k = 0; k < 3; ++k)
-      if (!(p[k] >= box[k] && p[k] <= box[3 + k])) {
+  const float step = std::max({view.box[3] - view.box[0], view.box[4] - view.box[1], view.box[5] - view.box[2]}) / 65535;
+  for (size_t i = 0; i < view.vertices; ++i)
+    for (size_t k = 0; k < 3; ++k)
+      if (!(view.positions[3 * i + k] >= view.box[k] - step && view.positions[3 * i + k] <= view.box[3 + k] + step)) {
         ADD_FAILURE() << what << ": vertex " << i << " outside the header's bounding box";
         return view;
       }
-  }
-  for (size_t i = 0; faces && i < v; ++i) {
-    const auto* n = reinterpret_cast<const int8_t*>(bytes.data() + normals + 3 * i);
+  for (size_t i = 0; faces && i < view.vertices; ++i) {
+    const int8_t* n = view.normals.data() + 4 * i;
     const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     if (std::abs(length - 127) > 2) {
       ADD_FAILURE() << what << ": normal " << i << " has length " << length << " (127 expected)";
       return view;
     }
   }
-  for (size_t i = 0; i < 4 * size_t(view.quads) + 3 * size_t(view.triangles) + 2 * size_t(view.segments); ++i) {
-    uint32_t index = 0;
-    std::memcpy(&index, bytes.data() + indices + 4 * i, 4);
-    if (index >= v) {
-      ADD_FAILURE() << what << ": index " << i << " is " << index << ", past the " << v << " vertices";
-      return view;
-    }
-  }
+  for (const std::vector<uint32_t>* indices : {&view.triangle_indices, &view.segment_indices})
+    for (size_t i = 0; i < indices->size(); ++i)
+      if ((*indices)[i] >= view.vertices) {
+        ADD_FAILURE() << what << ": index " << i << " is " << (*indices)[i] << ", past the " << view.vertices << " vertices";
+        return view;
+      }
   return view;
 }
 
@@ -158,9 +143,8 @@ TEST_F(StudioServerTest, TheViewOfEveryPreviewIsWhatThePageReads) {
   auto c = client();
   const auto surface = c.Get("/api/result/" + session + "/surface.bin");
   ASSERT_TRUE(surface);
-  const ViewLayout drawn = check_view(surface->body, "surface.bin");
+  const test::DecodedView drawn = check_view(surface->body, "surface.bin");
   EXPECT_EQ(drawn.triangles, 1600u); // the pretzel's triangles
-  EXPECT_EQ(drawn.quads, 0u);
   for (const char* mode : {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"})
     for (const bool preview : {true, false}) {
       const std::string what = std::string(mode) + (preview ? " preview" : " full");
@@ -173,21 +157,13 @@ TEST_F(StudioServerTest, TheViewOfEveryPreviewIsWhatThePageReads) {
       const auto bytes = c.Get("/api/result/" + session + "/view.bin");
       ASSERT_TRUE(bytes);
       ASSERT_EQ(bytes->status, 200) << what;
-      const ViewLayout view = check_view(bytes->body, what);
+      const test::DecodedView view = check_view(bytes->body, what);
       if (std::string(mode) == "curve") {
-        EXPECT_EQ(view.quads + view.triangles, 0u) << what;
+        EXPECT_EQ(view.triangles, 0u) << what;
         EXPECT_EQ(view.segments, stats["curve_points"].get<uint32_t>()) << what << ": one closed curve";
         EXPECT_EQ(view.flags, 0u) << what;
       } else {
-        EXPECT_EQ(2 * view.quads + view.triangles, stats["triangles"].get<uint32_t>()) << what;
-        // Variable wires and ribbons come split into triangles, each quad along its better
-        // diagonal; the rest are made of quads.
-        if (std::string(mode).starts_with("variable")) {
-          EXPECT_EQ(view.quads, 0u) << what;
-          EXPECT_GT(view.triangles, 0u) << what;
-        } else {
-          EXPECT_GT(view.quads, 0u) << what << ": constant wires, ribbons and duotone are made of quads";
-        }
+        EXPECT_EQ(view.triangles, stats["triangles"].get<uint32_t>()) << what;
         EXPECT_EQ(view.segments, 0u) << what;
         EXPECT_EQ(view.flags, std::string(mode) == "duotone" ? 3u : 2u) << what;
       }
@@ -281,7 +257,7 @@ TEST_F(StudioServerTest, TwentyConcurrentRequestsSucceedOrAreReplaced) {
   const auto view = client().Get("/api/result/" + session + "/view.bin");
   ASSERT_TRUE(view);
   EXPECT_EQ(view->status, 200);
-  EXPECT_EQ(view->body.substr(0, 4), "MNDR");
+  EXPECT_EQ(view->body.substr(0, 4), "MND2");
 }
 
 TEST(StudioRequestRefusal, HostMustNameThisServer) {
@@ -392,9 +368,9 @@ TEST_F(StudioCancelTest, ANewerRequestCancelsTheJobInFlight) {
   EXPECT_EQ(json::parse(client().Get("/api/progress/" + session)->body)["busy"], false);
   const auto view = client().Get("/api/result/" + session + "/view.bin");
   ASSERT_TRUE(view);
-  uint32_t faces[2];
-  std::memcpy(faces, view->body.data() + 8, 8);
-  EXPECT_EQ(faces[0] + faces[1], 0u) << "the view is the curve's, not the held wire's";
+  const test::DecodedView drawn = test::decode_view(view->body);
+  EXPECT_EQ(drawn.triangles, 0u) << "the view is the curve's, not the held wire's";
+  EXPECT_GT(drawn.segments, 0u);
 }
 
 TEST_F(StudioCancelTest, CancelStopsTheJobInFlight) {

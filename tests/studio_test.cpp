@@ -7,6 +7,7 @@
 #include "meander/studio.h"
 #include "meander/wire.h"
 #include "test_support.h"
+#include "view_decoder.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -254,22 +255,35 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
     }
 }
 
-// A preview that 2 curve samples would make larger than its budget (2.5M elements) takes
-// 1: a 64-sided wire on a 4,000-face sphere, 3.1M triangles at 2 samples.
-TEST(Studio, APreviewOverItsBudgetTakesFewerSamples) {
+// A preview that 2 curve samples would make larger than its budget (1M elements) takes
+// 1, and a wire still over it is drawn as its ribbon: on a 4,000-face sphere (12,000
+// triangles of the cycle), a 32-sided wire has 1.5M triangles at 2 samples and 0.77M at
+// 1; a 64-sided one 1.5M at 1.
+TEST(Studio, APreviewOverItsBudgetTakesFewerSamplesThenARibbon) {
   StudioSurface surface{.name = "sphere.obj"};
   surface.repaired = repair(make_shape("sphere", 4000), surface.name);
-  StudioParams wide{.mode = StudioMode::constant_wire, .wire = {.sides = 64}};
-  StudioParams one = wide;
-  one.wire.curve.curve.samples = 1;
-  StudioParams two = wide;
-  two.wire.curve.curve.samples = 2;
-  ASSERT_GT(studio_result_size(surface, two), 2'500'000);
+  const auto at = [](int sides, int samples, StudioMode mode = StudioMode::constant_wire) {
+    StudioParams p{.mode = mode, .wire = {.sides = sides}};
+    p.wire.curve.curve.samples = samples;
+    return p;
+  };
+  ASSERT_GT(studio_result_size(surface, at(32, 2)), 1'000'000);
+  ASSERT_LE(studio_result_size(surface, at(32, 1)), 1'000'000);
+  StudioParams fewer = at(32, 4);
+  fewer.preview = true;
+  EXPECT_EQ(studio_result_size(surface, fewer), studio_result_size(surface, at(32, 1)));
+  const StudioResult one = make_studio_result(surface, fewer);
+  EXPECT_EQ(one.params.wire.curve.curve.samples, 1);
+  EXPECT_EQ(one.params.wire.shape, WireShape::wire);
+  EXPECT_EQ(one.triangles, studio_result_size(surface, at(32, 1)));
+  EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(one)).contains("preview_as_ribbon"));
+  StudioParams wide = at(64, 4);
   wide.preview = true;
-  EXPECT_EQ(studio_result_size(surface, wide), studio_result_size(surface, one));
-  const StudioResult quick = make_studio_result(surface, wide);
-  EXPECT_EQ(quick.params.wire.curve.curve.samples, 1);
-  EXPECT_EQ(quick.triangles, studio_result_size(surface, one));
+  ASSERT_GT(studio_result_size(surface, at(64, 1)), 1'000'000);
+  const StudioResult ribbon = make_studio_result(surface, wide);
+  EXPECT_EQ(ribbon.params.wire.shape, WireShape::ribbon);
+  EXPECT_EQ(ribbon.triangles, studio_result_size(surface, at(64, 1, StudioMode::constant_ribbon)));
+  EXPECT_EQ(nlohmann::json::parse(studio_stats_json(ribbon))["preview_as_ribbon"], true);
   // Within the budget a preview keeps its 2 samples.
   StudioParams narrow{.mode = StudioMode::constant_wire, .preview = true};
   EXPECT_EQ(studio_result_size(surface, narrow), studio_result_size(surface, {.mode = StudioMode::constant_wire}) / 2);
@@ -344,53 +358,52 @@ TEST(Studio, UploadsOverTheFaceLimitAreRefused) {
 TEST(Studio, ViewBytesHoldTheFacesAndSegments) {
   PolygonMesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
-  mesh.add_face({0, 1, 2, 3});       // a quad goes as a quad
+  mesh.add_face({0, 1, 2, 3});       // a quad as 2 triangles
   mesh.add_face({1, 4, 5});          // a triangle as a triangle
   mesh.add_face({2, 1, 5, 6, 7});    // a pentagon fanned into 3 triangles
   Polylines loop;
   loop.points = {{0, 0, 1}, {1, 0, 1}, {0, 1, 2}};
   loop.start = {0, 3};
-  const std::string bytes = studio_view_bytes(mesh, loop);
-  // Header, 11 positions, 11 normals of 3 bytes padded to 36, 1 quad, 4 triangles, 3 segments.
-  ASSERT_EQ(bytes.size(), 48u + 11 * 12 + 36 + 16 + 4 * 12 + 3 * 8);
-  EXPECT_EQ(bytes.substr(0, 4), "MNDR");
-  uint32_t counts[5];
-  std::memcpy(counts, bytes.data() + 4, sizeof counts);
-  EXPECT_EQ(std::vector<uint32_t>(counts, counts + 5), (std::vector<uint32_t>{11, 1, 4, 3, 2})); // normals, no texture
-  float box[6];
-  std::memcpy(box, bytes.data() + 24, sizeof box);
-  EXPECT_EQ(std::vector<float>(box, box + 6), (std::vector<float>{0, 0, 0, 2, 2, 2})); // the curve's points too
+  const test::DecodedView view = test::decode_view(studio_view_bytes(mesh, loop));
+  ASSERT_TRUE(view.ok);
+  EXPECT_EQ(std::vector<uint32_t>({view.vertices, view.triangles, view.segments, view.flags}),
+            (std::vector<uint32_t>{11, 6, 3, 2})); // normals, no texture
+  EXPECT_EQ(std::vector<float>(view.box, view.box + 6), (std::vector<float>{0, 0, 0, 2, 2, 2})); // the curve's points too
+  // The curve's second point, after the 8 of the mesh, within a step (2 / 65535) of (1, 0, 1).
+  EXPECT_NEAR(view.positions[3 * 9 + 0], 1.0f, 2.0 / 65535);
+  EXPECT_NEAR(view.positions[3 * 9 + 2], 1.0f, 2.0 / 65535);
   // The faces all face +z: every mesh vertex's normal is (0, 0, 127); the curve's points have none.
-  const char* normals = bytes.data() + 48 + 11 * 12;
-  for (int v = 0; v < 11; ++v)
-    EXPECT_EQ(std::vector<int>(normals + 3 * v, normals + 3 * v + 3), (std::vector<int>{0, 0, v < 8 ? 127 : 0})) << v;
-  uint32_t indices[16];
-  std::memcpy(indices, bytes.data() + 48 + 11 * 12 + 36, sizeof indices);
-  EXPECT_EQ(std::vector<uint32_t>(indices, indices + 16),
-            (std::vector<uint32_t>{0, 1, 2, 3, /* triangle */ 1, 4, 5, /* fan */ 2, 1, 5, 2, 5, 6, 2, 6, 7}));
-  uint32_t last_segment[2];
-  std::memcpy(last_segment, bytes.data() + bytes.size() - 8, 8);
-  EXPECT_EQ(last_segment[0], 10u); // 8 mesh vertices first, then the curve's: closes 10 -> 8
-  EXPECT_EQ(last_segment[1], 8u);
+  for (size_t v = 0; v < 11; ++v)
+    EXPECT_EQ(std::vector<int>(view.normals.begin() + 4 * v, view.normals.begin() + 4 * v + 4),
+              (std::vector<int>{0, 0, v < 8 ? 127 : 0, 0}))
+        << v;
+  // meshoptimizer's index codec keeps each triangle and their order, and may rotate a
+  // triangle's corners: compared as the sets of corners, in order.
+  std::vector<std::vector<uint32_t>> triangles;
+  for (size_t t = 0; t < 6; ++t) {
+    std::vector<uint32_t> corners(view.triangle_indices.begin() + 3 * t, view.triangle_indices.begin() + 3 * t + 3);
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    triangles.push_back(corners);
+  }
+  EXPECT_EQ(triangles, (std::vector<std::vector<uint32_t>>{{0, 1, 2}, {0, 2, 3}, /* triangle */ {1, 4, 5},
+                                                           /* fan */ {1, 5, 2}, {2, 5, 6}, {2, 6, 7}}));
+  EXPECT_EQ(view.segment_indices, (std::vector<uint32_t>{8, 9, 9, 10, 10, 8})); // 8 mesh vertices, then the curve's
   // A curve alone has neither normals nor texture coordinates.
-  const std::string curve = studio_view_bytes({}, loop);
-  ASSERT_EQ(curve.size(), 48u + 3 * 12 + 3 * 8);
-  std::memcpy(counts, curve.data() + 4, sizeof counts);
-  EXPECT_EQ(counts[4], 0u);
-  // With texture coordinates every face corner is a vertex of its own, its (u, v) after the normals.
+  const test::DecodedView curve = test::decode_view(studio_view_bytes({}, loop));
+  EXPECT_TRUE(curve.ok);
+  EXPECT_EQ(curve.flags, 0u);
+  EXPECT_EQ(curve.triangles, 0u);
+  // With texture coordinates every face corner is a vertex of its own.
   PolygonMesh quad;
   quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   quad.add_face({0, 1, 2, 3});
   Appearance appearance{.materials = {{.name = "m"}}, .texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  const std::string textured = studio_view_bytes(quad, {}, appearance);
-  ASSERT_EQ(textured.size(), 48u + 4 * 12 + 12 + 4 * 8 + 16);
-  std::memcpy(counts, textured.data() + 4, sizeof counts);
-  EXPECT_EQ(counts[0], 4u);
-  EXPECT_EQ(counts[4], 3u);
-  float uv[8];
-  std::memcpy(uv, textured.data() + 48 + 4 * 12 + 12, sizeof uv);
-  EXPECT_EQ(uv[4], 1.0f); // corner 2 is (1, 1)
-  EXPECT_EQ(uv[5], 1.0f);
+  const test::DecodedView textured = test::decode_view(studio_view_bytes(quad, {}, appearance));
+  ASSERT_TRUE(textured.ok);
+  EXPECT_EQ(textured.vertices, 4u);
+  EXPECT_EQ(textured.flags, 3u);
+  EXPECT_EQ(textured.texcoords[4], 1.0f); // corner 2 is (1, 1)
+  EXPECT_EQ(textured.texcoords[5], 1.0f);
 }
 
 // render.png as the page's view shows it: its size, and its camera.

@@ -46,9 +46,10 @@ struct StudioParams {
   DuotoneJob duotone;
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
-  // larger than 2.5M elements, studio_result_size), levels and subdivide 0, at most 2
-  // rounds of relaxation with a spacing, `radius auto` unchecked (see
-  // make_studio_result), and no printability report. The full result follows it.
+  // larger than 1M elements, studio_result_size), a wire still over that drawn as its
+  // ribbon, levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
+  // `radius auto` unchecked (see make_studio_result), a variable wire's self-intersections
+  // not cleared (WireJob::clear), and no printability report. The full result follows it.
   bool preview = false;
 };
 
@@ -134,8 +135,9 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
 // leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
-// for wires and ribbons vertices, faces, radius and (not for a preview, which has no
-// report) watertight, self_intersecting, volume, printable, and for duotone quads, faces, notes.
+// for wires and ribbons vertices, faces, radius, preview_as_ribbon (true: a wire's preview
+// drawn as its ribbon) and (not for a preview, which has no report) watertight,
+// self_intersecting, volume, printable, and for duotone quads, faces, notes.
 std::string studio_stats_json(const StudioResult& result);
 
 // The files a result can be fetched as (GET /api/result/SESSION/NAME). The names are a

@@ -98,6 +98,9 @@ struct VariableWireOptions {
   // triangles, less where the slabs would run into each other (variable_wire).
   double thickness = 0;
   int levels = 2; // Catmull-Clark levels (OpenSubdiv), >= 0; 0 gives the control mesh
+  // Search the result for self-intersections and clear them (variable_wire); false: the
+  // local estimates alone, for a quick look (the studio's preview), which may cross itself.
+  bool clear = true;
 };
 
 struct VariableWire {

@@ -8,9 +8,11 @@
 #include "meander/shapes.h"
 #include "meander/textured_io.h"
 
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -288,10 +290,11 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   return wire_triangles(cycle, wire);
 }
 
-// A preview holds at most about this many elements when fewer curve samples can make it
-// so: what the page gets onto the screen in about a quarter of a second here (a variable
-// wire preview of 2.4M triangles, docs/studio.md, Speed).
-constexpr int64_t preview_budget = 2'500'000;
+// A preview holds at most about this many elements when fewer curve samples, or a wire
+// drawn as its ribbon, can make it so: the browser takes a view of a million triangles
+// (about 20 MB) in about 0.2 s here, and its time grows with the bytes (docs/studio.md,
+// Speed).
+constexpr int64_t preview_budget = 1'000'000;
 
 // What is made: the wire's method and shape the mode's, and a preview's reductions
 // (StudioParams::preview).
@@ -307,8 +310,12 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   params.wire.curve.relax = std::min(params.wire.curve.relax, 2);
   params.wire.levels = 0;
   params.wire.report = false;
+  params.wire.clear = false; // the search for self-intersections costs more than the wire
   params.duotone.subdivide = 0;
   while (samples > 1 && result_size(surface, params) > preview_budget) --samples;
+  // A wire of 8 sides, or of slabs, has 4 to 8 times the triangles of its ribbon.
+  if ((mode == StudioMode::constant_wire || mode == StudioMode::variable_wire) && result_size(surface, params) > preview_budget)
+    params.wire.shape = WireShape::ribbon;
   return params;
 }
 
@@ -438,6 +445,10 @@ std::string studio_stats_json(const StudioResult& result) {
       stats["printable"] = r.printable();
       stats["surface_crossings"] = result.surface_crossings;
     }
+    // A wire's preview over its budget is drawn as the wire's ribbon (its footprint).
+    if (result.params.wire.shape == WireShape::ribbon &&
+        (result.params.mode == StudioMode::constant_wire || result.params.mode == StudioMode::variable_wire))
+      stats["preview_as_ribbon"] = true;
     stats["stars"] = result.curve.stars;
     stats["cap_flips"] = result.curve.cap_flips;
     stats["cap_cuts"] = result.curve.cap_cuts;
@@ -462,78 +473,117 @@ StudioFile parse_studio_file(std::string_view name) {
 
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
   const bool textured = !appearance.texcoords.empty();
-  // Quads go as quads (the page splits them), a third fewer indices than two triangles.
-  int64_t quads = 0, triangles = 0, segments = 0;
-  for (int32_t f = 0; f < mesh.num_faces(); ++f)
-    if (mesh.face_size(f) == 4) ++quads;
-    else triangles += std::max(0, mesh.face_size(f) - 2);
+  int64_t triangles = 0, segments = 0;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) triangles += std::max(0, mesh.face_size(f) - 2);
   for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
     const int32_t n = curves.start[k + 1] - curves.start[k];
     const bool open = !curves.open.empty() && curves.open[k];
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
-  const bool shaded = quads + triangles > 0;
+  const bool shaded = triangles > 0;
   const int64_t mesh_vertices = textured ? int64_t(mesh.face_vertices.size()) : int64_t(mesh.positions.size());
   const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
-  if (vertices > UINT32_MAX || 4 * quads + 3 * triangles > UINT32_MAX || segments > UINT32_MAX)
-    throw UsageError("result too large for the view (over 2^32 elements)");
-  // The normals are computed here, not in the page: a JavaScript loop over millions of
-  // triangles took longer than making a preview (docs/studio.md, Speed).
-  const std::vector<Vec3> normals = shaded ? vertex_normals(mesh) : std::vector<Vec3>{};
-  const size_t v = size_t(vertices), normal_bytes = shaded ? (3 * v + 3) / 4 * 4 : 0;
-  std::string out(48 + 12 * v + normal_bytes + (textured ? 8 * v : 0) + 16 * size_t(quads) + 12 * size_t(triangles) +
-                      8 * size_t(segments),
-                  '\0');
+  if (vertices > UINT32_MAX / 2 || 3 * triangles > UINT32_MAX / 2 || 2 * segments > UINT32_MAX / 2)
+    throw UsageError("result too large for the view (over 2^31 elements)");
+  const size_t v = size_t(vertices);
+  // With texture coordinates, which belong to the corners, every corner is a vertex.
+  auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
+  auto index = [&](int32_t c) { return uint32_t(textured ? size_t(c) : corner_vertex(c)); };
+
+  std::string out(48, '\0');
   char* at = out.data();
   auto put = [&at](auto value) {
     io::store_little_endian(at, value);
     at += sizeof(value);
   };
-  auto put_vec = [&put](Vec3 p) { put(p.x), put(p.y), put(p.z); };
-  std::memcpy(at, "MNDR", 4);
+  std::memcpy(at, "MND2", 4);
   at += 4;
   put(uint32_t(vertices));
-  put(uint32_t(quads));
   put(uint32_t(triangles));
   put(uint32_t(segments));
   put(uint32_t((textured ? 1 : 0) | (shaded ? 2 : 0)));
+  put(uint32_t(0));
   Box3 box = bounding_box(mesh.positions);
   for (const Vec3& p : curves.points) box.extend(p);
-  put_vec(box.min), put_vec(box.max);
-  // With texture coordinates, which belong to the corners, every corner is a vertex.
-  auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
-  if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_vec(mesh.positions[corner_vertex(c)]);
-  else for (const Vec3& p : mesh.positions) put_vec(p);
-  for (const Vec3& p : curves.points) put_vec(p);
-  if (shaded) {
-    char* const normals_end = at + normal_bytes;
-    auto put_normal = [&](Vec3 n) { // rounded half away from zero, without a libm call per component
-      for (float x : {n.x, n.y, n.z}) *at++ = char(int8_t(x * 127.0f + (x < 0 ? -0.5f : 0.5f)));
+  for (const float x : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) put(x);
+  // Each array compressed by meshoptimizer's codecs (the page decodes them with its
+  // WebAssembly decoder, which three.js ships): the browser took a view's bytes at about
+  // 50 MB/s here, most of a preview's time. Each as its byte count, then the bytes,
+  // padded to 4.
+  std::vector<unsigned char> encoded;
+  auto append = [&](size_t size) {
+    const uint32_t count = uint32_t(size);
+    char length[4];
+    io::store_little_endian(length, count);
+    out.append(length, 4);
+    out.append(reinterpret_cast<const char*>(encoded.data()), size);
+    out.append((4 - size % 4) % 4, '\0');
+  };
+  auto append_vertices = [&](const void* data, size_t size) {
+    encoded.resize(meshopt_encodeVertexBufferBound(v, size));
+    append(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, v, size));
+  };
+  {
+    // Positions as 16-bit steps of the box's largest side from its low corner (a
+    // 65,535th of it: finer than a pixel of any view), which the vertex codec packs to a
+    // third of float32's bytes; a 4th zero, as for the normals.
+    const double scale = 65535 / std::max(double(box.largest_side()), 1e-30);
+    std::vector<std::array<uint16_t, 4>> quantized;
+    quantized.reserve(v);
+    auto quantize = [&](Vec3 p) { // rounded, without a libm call per coordinate
+      const double x[3] = {double(p.x) - box.min.x, double(p.y) - box.min.y, double(p.z) - box.min.z};
+      std::array<uint16_t, 4> q{};
+      for (int k = 0; k < 3; ++k) q[size_t(k)] = uint16_t(std::min(x[k] * scale + 0.5, 65535.0));
+      quantized.push_back(q);
     };
-    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) put_normal(normals[corner_vertex(c)]);
-    else for (const Vec3& n : normals) put_normal(n);
-    at = normals_end; // the curve's points have no normal: zero, and the padding
+    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) quantize(mesh.positions[corner_vertex(c)]);
+    else for (const Vec3& p : mesh.positions) quantize(p);
+    for (const Vec3& p : curves.points) quantize(p);
+    append_vertices(quantized.data(), sizeof(quantized[0]));
+  }
+  if (shaded) {
+    // The normals are computed here, not in the page: a JavaScript loop over millions of
+    // triangles took longer than making a preview. A 4th byte of zero: the vertex codec
+    // takes elements of a multiple of 4 bytes.
+    const std::vector<Vec3> normals = vertex_normals(mesh);
+    std::vector<std::array<int8_t, 4>> packed(v, {0, 0, 0, 0});
+    auto pack = [](Vec3 n) { // rounded half away from zero, without a libm call per component
+      std::array<int8_t, 4> q{};
+      const float x[3] = {n.x, n.y, n.z};
+      for (int k = 0; k < 3; ++k) q[size_t(k)] = int8_t(x[k] * 127.0f + (x[k] < 0 ? -0.5f : 0.5f));
+      return q;
+    };
+    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) packed[size_t(c)] = pack(normals[corner_vertex(c)]);
+    else for (size_t i = 0; i < normals.size(); ++i) packed[i] = pack(normals[i]);
+    append_vertices(packed.data(), 4); // the curve's points have no normal: zero
   }
   if (textured) {
-    for (const TexCoord& t : appearance.texcoords) put(t.u), put(t.v);
-    at += 8 * curves.points.size(); // the curve's points: (0, 0)
+    std::vector<TexCoord> uv(appearance.texcoords);
+    uv.resize(v); // the curve's points: (0, 0)
+    append_vertices(uv.data(), sizeof(TexCoord));
   }
-  // A corner's vertex number in the view.
-  auto index = [&](int32_t c) { return uint32_t(textured ? size_t(c) : corner_vertex(c)); };
-  for (int32_t f = 0; f < mesh.num_faces(); ++f)
-    if (mesh.face_size(f) == 4)
-      for (int32_t i = 0; i < 4; ++i) put(index(mesh.face_start[f] + i));
-  // Other polygons fanned: corners (start, start + i, start + i + 1).
-  for (int32_t f = 0; f < mesh.num_faces(); ++f)
-    if (mesh.face_size(f) != 4)
+  if (triangles > 0) {
+    // Polygons fanned: corners (start, start + i, start + i + 1); a quad as 0-1-2, 0-2-3.
+    std::vector<uint32_t> indices;
+    indices.reserve(size_t(3 * triangles));
+    for (int32_t f = 0; f < mesh.num_faces(); ++f)
       for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
-        for (int32_t c : {0, i, i + 1}) put(index(mesh.face_start[f] + c));
-  const uint32_t base = uint32_t(mesh_vertices);
-  for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
-    const int32_t begin = curves.start[k], end = curves.start[k + 1];
-    if (end - begin < 2) continue;
-    for (int32_t i = begin; i + 1 < end; ++i) put(base + uint32_t(i)), put(base + uint32_t(i + 1));
-    if (curves.open.empty() || !curves.open[k]) put(base + uint32_t(end - 1)), put(base + uint32_t(begin));
+        for (int32_t c : {0, i, i + 1}) indices.push_back(index(mesh.face_start[f] + c));
+    encoded.resize(meshopt_encodeIndexBufferBound(indices.size(), v));
+    append(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices.data(), indices.size()));
+  }
+  if (segments > 0) {
+    std::vector<uint32_t> indices;
+    indices.reserve(size_t(2 * segments));
+    const uint32_t base = uint32_t(mesh_vertices);
+    for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
+      const int32_t begin = curves.start[k], end = curves.start[k + 1];
+      if (end - begin < 2) continue;
+      for (int32_t i = begin; i + 1 < end; ++i) indices.insert(indices.end(), {base + uint32_t(i), base + uint32_t(i + 1)});
+      if (curves.open.empty() || !curves.open[k]) indices.insert(indices.end(), {base + uint32_t(end - 1), base + uint32_t(begin)});
+    }
+    encoded.resize(meshopt_encodeIndexSequenceBound(indices.size(), v));
+    append(meshopt_encodeIndexSequence(encoded.data(), encoded.size(), indices.data(), indices.size()));
   }
   return out;
 }

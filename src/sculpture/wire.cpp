@@ -740,7 +740,7 @@ struct Sections {
       if (ribbon) {
         out.insert(out.end(), {l, rr});
       } else {
-        const Vec3 h = up[r] * (half_thickness(r) * (automatic ? thinned[r] : 1.0f));
+        const Vec3 h = up[r] * (half_thickness(r) * (clearing ? thinned[r] : 1.0f));
         out.insert(out.end(), {l - h, l + h, rr + h, rr - h});
       }
     }
@@ -844,7 +844,7 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   // surface by design, its trapezoids meeting along the triangles' sides: that is not to
   // be narrowed away.
   const bool automatic = !ribbon && options.thickness == 0;
-  const bool clearing = automatic || (ribbon && options.s < 1 && options.t < 1);
+  const bool clearing = options.clear && (automatic || (ribbon && options.s < 1 && options.t < 1));
   Sections sections{.rungs = rungs,
                     .ribbon = ribbon,
                     .automatic = automatic,

@@ -2,6 +2,7 @@
 // parameter of `meander curve` and `meander wire`, and the JSON API of docs/studio.md.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -61,51 +62,61 @@ function resize() {
 new ResizeObserver(resize).observe(container);
 resize();
 
-// The binary view format of studio.h (studio_view_bytes): "MNDR", vertex, quad,
-// triangle and segment counts, flags (1: texture coordinates, 2: normals) and the
-// bounding box, then float32 positions, [int8 normals, padded to 4 bytes], [float32
-// texture coordinates], uint32 quads, uint32 triangles, uint32 segments. Every array but
-// the quads is used where it lies in the buffer: no loop over the vertices here
-// (computing normals in the page took longer than making a preview on the server).
-function parseView(buffer) {
-  const header = new DataView(buffer, 0, 48);
-  if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MNDR') throw new Error('not a Meander view');
-  const [v, q, t, s, flags] = [4, 8, 12, 16, 20].map((at) => header.getUint32(at, true));
+// The binary view format of studio.h (studio_view_bytes): "MND2", vertex, triangle and
+// segment counts, flags (1: texture coordinates, 2: normals), 0, the bounding box; then
+// each array compressed by meshoptimizer's codecs, as its byte count and bytes padded to
+// 4: uint16 positions (steps of a 65,535th of the box's largest side from its low
+// corner) and a zero, [int8 normals and a zero byte], [float32 texture coordinates],
+// [uint32 triangles], [uint32 segments]. The decoder (WebAssembly, from three.js) writes
+// each array where the geometry uses it: no loop over the vertices here (computing
+// normals in the page took longer than making a preview on the server).
+async function parseView(buffer) {
+  await MeshoptDecoder.ready;
+  if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MND2') throw new Error('not a Meander view');
+  const header = new DataView(buffer, 0, 24);
+  const [v, t, s, flags] = [4, 8, 12, 16].map((at) => header.getUint32(at, true));
   const textured = (flags & 1) !== 0, shaded = (flags & 2) !== 0;
   const box = new Float32Array(buffer, 24, 6);
   let offset = 48;
+  const next = (count, size, decode) => {
+    const length = new DataView(buffer, offset, 4).getUint32(0, true);
+    const target = new Uint8Array(count * size);
+    decode(target, count, size, new Uint8Array(buffer, offset + 4, length));
+    offset += 4 + Math.ceil(length / 4) * 4;
+    return target.buffer;
+  };
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 3), 3));
-  offset += v * 12;
+  // Positions come as 16-bit steps of the box's largest side: the object is scaled and
+  // placed so (placed()).
+  const positions = new THREE.InterleavedBuffer(new Uint16Array(next(v, 8, MeshoptDecoder.decodeVertexBuffer)), 4);
+  geometry.setAttribute('position', new THREE.InterleavedBufferAttribute(positions, 3, 0, true));
   if (shaded) {
-    geometry.setAttribute('normal', new THREE.BufferAttribute(new Int8Array(buffer, offset, v * 3), 3, true));
-    offset += Math.ceil(v * 3 / 4) * 4;
+    const normals = new THREE.InterleavedBuffer(new Int8Array(next(v, 4, MeshoptDecoder.decodeVertexBuffer)), 4);
+    geometry.setAttribute('normal', new THREE.InterleavedBufferAttribute(normals, 3, 0, true));
   }
-  if (textured) {
-    geometry.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(buffer, offset, v * 2), 2));
-    offset += v * 8;
-  }
-  const quads = new Uint32Array(buffer, offset, q * 4);
-  const triangles = new Uint32Array(buffer, offset + q * 16, t * 3);
-  const lines = q + t === 0;
-  let index = triangles;
-  if (q > 0) {
-    // Each quad as its two triangles, the way the server fans a polygon.
-    index = new Uint32Array(q * 6 + t * 3);
-    for (let i = 0, j = 0; i < q * 4; i += 4, j += 6) {
-      const a = quads[i], b = quads[i + 1], c = quads[i + 2], d = quads[i + 3];
-      index[j] = a; index[j + 1] = b; index[j + 2] = c;
-      index[j + 3] = a; index[j + 4] = c; index[j + 5] = d;
-    }
-    index.set(triangles, q * 6);
-  }
-  geometry.setIndex(new THREE.BufferAttribute(lines ? new Uint32Array(buffer, offset + q * 16 + t * 12, s * 2) : index, 1));
+  if (textured) geometry.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(next(v, 8, MeshoptDecoder.decodeVertexBuffer)), 2));
+  const lines = t === 0;
+  const index = lines ? (s > 0 ? new Uint32Array(next(2 * s, 4, MeshoptDecoder.decodeIndexSequence)) : new Uint32Array(0))
+    : new Uint32Array(next(3 * t, 4, MeshoptDecoder.decodeIndexBuffer));
+  geometry.setIndex(new THREE.BufferAttribute(index, 1));
   // The bounds three.js would otherwise compute with a loop over the positions (the
-  // sphere when it first culls): the box's circumscribed sphere encloses them too.
-  geometry.boundingBox = new THREE.Box3(new THREE.Vector3(box[0], box[1], box[2]), new THREE.Vector3(box[3], box[4], box[5]));
+  // sphere when it first culls), in the geometry's own units: the box's circumscribed
+  // sphere encloses them too.
+  const low = new THREE.Vector3(box[0], box[1], box[2]), high = new THREE.Vector3(box[3], box[4], box[5]);
+  const side = Math.max(high.x - low.x, high.y - low.y, high.z - low.z, 1e-30);
+  geometry.boundingBox = low.x > high.x ? new THREE.Box3()
+    : new THREE.Box3(new THREE.Vector3(), high.clone().sub(low).divideScalar(side));
   geometry.boundingSphere = geometry.boundingBox.isEmpty() ? new THREE.Sphere()
     : geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
-  return { geometry, lines, textured };
+  // What places the object: its low corner and the step's scale.
+  const placed = (object) => {
+    if (low.x <= high.x) {
+      object.position.copy(low);
+      object.scale.setScalar(side);
+    }
+    return object;
+  };
+  return { geometry, lines, textured, placed };
 }
 
 function replace(old, object) {
@@ -169,7 +180,7 @@ window.studio = {
   // What the browser test reads: the result in the scene.
   resultInfo() {
     if (!resultObject) return null;
-    const box = resultObject.geometry.boundingBox;
+    const box = new THREE.Box3().setFromObject(resultObject);
     return {
       vertices: resultObject.geometry.attributes.position.count,
       indices: resultObject.geometry.index.count,
@@ -326,8 +337,9 @@ async function makeOne(preview, ticket) {
   const buffer = await (await api(`/api/result/${state.session}/view.bin`, { signal })).arrayBuffer();
   lap('fetch');
   if (ticket !== job) return;
-  const { geometry, lines, textured } = parseView(buffer);
+  const { geometry, lines, textured, placed } = await parseView(buffer);
   lap('parse');
+  if (ticket !== job) return;
   // The atlas depends on the tile options alone (stats.texture names them): it is
   // fetched only when they change, not on every seed or subdivision change.
   if (textured && stats.texture !== loadedTexture) {
@@ -342,7 +354,7 @@ async function makeOne(preview, ticket) {
     lap('texture');
   }
   const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
-  resultObject = replace(resultObject, lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
+  resultObject = replace(resultObject, placed(lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material)));
   applySurfaceStyle();
   // The update ends when the frame showing it is drawn: the geometry's upload and the
   // first draw are part of it.
@@ -380,10 +392,10 @@ async function loadSurface(reply) {
   const repairs = reply.repairs.length ? ` — repaired: ${reply.repairs.join('; ')}` : '';
   $('mesh-name').textContent = `${reply.name}: ${plural(reply.faces, 'face', 'faces')}${repairs}`;
   const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
-  const { geometry } = parseView(buffer);
-  state.surfaceBox = geometry.boundingBox.clone();
+  const { geometry, placed } = await parseView(buffer);
+  surfaceObject = replace(surfaceObject, placed(new THREE.Mesh(geometry, surfaceMaterial)));
+  state.surfaceBox = new THREE.Box3().setFromObject(surfaceObject);
   showSpacing();
-  surfaceObject = replace(surfaceObject, new THREE.Mesh(geometry, surfaceMaterial));
   resultObject = replace(resultObject, null);
   $('welcome').hidden = true;
   $('stats').innerHTML = '';
@@ -507,6 +519,8 @@ function showStats(stats) {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
   } else if (stats.mode !== 'curve') {
     rows.push(['faces', stats.faces.toLocaleString()]);
+    // Over the preview's budget a wire is previewed as its ribbon, a few times lighter.
+    if (stats.preview_as_ribbon) rows.push(['drawn as', 'its ribbon, until the full wire comes']);
     if (!stats.preview) rows.push(['watertight', yesNo(stats.watertight)], ['self-intersection', yesNo(stats.self_intersecting)]);
     // As `meander wire` notes: where the surface itself crosses itself, no settings clear the wire.
     if (stats.surface_crossings > 0) {
