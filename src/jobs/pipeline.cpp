@@ -13,7 +13,6 @@
 
 namespace meander {
 
-
 PolygonMesh scaled_to_size(PolygonMesh mesh, double size) {
   const double side = bounding_box(mesh.positions).largest_side();
   if (!(side > 0)) throw InputError("the mesh has no extent, so it has no size to scale");
@@ -111,12 +110,12 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
                           "Taubin's cycle is only defined there; the default quad dual-simplest handles "
                           "boundaries");
   }
+  stages.begin("cycle");
   // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
   const bool sample = job.sample || job.spacing;
   std::optional<CycleCurveWriter> writer;
   const PolylineWriteOptions write{.millimetres = job.model_size.has_value()};
   if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output, write);
-  stages.begin("cycle");
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
   if (writer) {
     stages.begin("smooth + write");
