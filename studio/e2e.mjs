@@ -7,7 +7,8 @@
 // held on the server by a newer change and by Stop; shows a full result refused as too
 // large; shows a duotone; restores the settings from the URL after a reload; lays the
 // page out 390 px wide; runs axe-core (no serious or critical violation) on each state;
-// shows a bad file's error; and saves screenshots to OUTPUT_FOLDER (studio_e2e*.png).
+// shows a bad file's error; and saves screenshots to OUTPUT_FOLDER (studio_e2e*.png: the
+// welcome, a variable wire, a duotone, a phone).
 // Exits 0 with a message, without testing, only when Chromium is not installed and CI is
 // not set.
 import { spawn } from 'node:child_process';
@@ -89,9 +90,15 @@ try {
 
   // The first impression: a welcome in the view, the favicon, and nothing inaccessible.
   check(await page.isVisible('#welcome') && await page.isVisible('#welcome-demo'), 'the empty view welcomes with what to do');
-  const favicon = await page.evaluate(async () => (await fetch(document.querySelector('link[rel=icon]').href)).status);
-  check(favicon === 200, `the favicon is served (HTTP ${favicon})`);
+  const favicon = await page.evaluate(async () => {
+    const icon = new Image();
+    icon.src = document.querySelector('link[rel=icon]').href;
+    try { await icon.decode(); } catch { return 0; }
+    return icon.naturalWidth;
+  });
+  check(favicon > 0, 'the favicon is served, an image the browser draws');
   await accessible('welcome');
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_welcome.png') });
 
   // A keyboard alone opens a mesh: Tab reaches the open button, Enter opens the file chooser.
   const torus = path.join(outputFolder, 'studio_e2e_torus.obj');
