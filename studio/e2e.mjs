@@ -348,6 +348,12 @@ try {
   await accessible('390 px with the settings');
   await page.setViewportSize({ width: 1280, height: 800 });
 
+  // A link with a choice a menu does not have keeps that menu's default, and the rest.
+  await page.goto(`${url}?mode=nonsense&tiles=dots`);
+  await page.waitForSelector('#welcome');
+  const linked = await page.evaluate(() => [document.getElementById('mode').value, document.getElementById('tiles').value]);
+  check(linked[0] === 'curve' && linked[1] === 'dots', `an unknown mode in a link falls back to the default (${linked})`);
+
   // A bad file: the page shows the reader's precise message and the server keeps going.
   await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });
   await page.waitForSelector('#error:not([hidden])');

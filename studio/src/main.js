@@ -581,7 +581,10 @@ function settings() {
 }
 function applySettings(values) {
   for (const id of settingIds) {
-    const el = $(id), value = values[id] ?? defaults[id];
+    const el = $(id);
+    let value = values[id] ?? defaults[id];
+    // A menu keeps its default for a choice it does not have (an old or edited link).
+    if (el.tagName === 'SELECT' && ![...el.options].some((o) => o.value === value)) value = defaults[id];
     if (el.type === 'checkbox') el.checked = value === '1';
     else el.value = value;
   }
