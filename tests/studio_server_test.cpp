@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -337,14 +338,14 @@ protected:
       if (!res || res->status != 200) return json();
       const json progress = json::parse(res->body);
       if (progress["busy"] == true && !progress["stage"].get<std::string>().empty()) return progress;
-      std::this_thread::yield();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10)); // a lighter poll, not a deadline
     }
   }
   void wait_until_idle(const std::string& session) const {
     for (auto c = client();;) {
       const auto res = c.Get("/api/progress/" + session);
       if (!res || res->status != 200 || json::parse(res->body)["busy"] == false) return;
-      std::this_thread::yield();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10)); // a lighter poll, not a deadline
     }
   }
 };
