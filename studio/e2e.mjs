@@ -35,6 +35,22 @@ if (!existsSync(browserPath)) {
   process.exit(0);
 }
 
+// Each part says when it starts, so that a test stopped by ctest's timeout shows where;
+// a part still waiting after a minute also shows what the page shows (the wait goes on:
+// only ctest's timeout ends a test that hangs).
+let stepStarted = Date.now();
+let pageState = async () => 'no page yet';
+const step = (what) => {
+  stepStarted = Date.now();
+  console.log(`studio e2e: ${what}`);
+};
+setInterval(async () => {
+  if (Date.now() - stepStarted < 60_000) return;
+  const shown = await Promise.race([pageState().catch((e) => `not readable: ${e.message}`),
+    new Promise((resolve) => setTimeout(() => resolve('not answering'), 5_000))]);
+  console.log(`studio e2e: still waiting; the page: ${shown}`);
+}, 60_000).unref();
+
 function check(condition, message) {
   if (!condition) throw new Error(`studio e2e: ${message}`);
 }
@@ -70,6 +86,15 @@ try {
   page.setDefaultTimeout(0);
   const problems = [];
   page.on('pageerror', (e) => problems.push(e.message));
+  page.on('crash', () => console.log('studio e2e: the page crashed'));
+  // The page intercepts file choosers from the start: a listener added with the key press
+  // that opens one can come late, and the chooser then opens natively and never reports
+  // (measured under load: 6 hangs in 80 tries; none in 120 with this listener).
+  page.on('filechooser', () => {});
+  pageState = () => page.evaluate(() => JSON.stringify({ idle: window.studio?.idle(), busy: window.studio?.state.busy,
+    revision: window.studio?.state.revision, error: document.getElementById('error')?.textContent,
+    progress: document.getElementById('progress')?.hidden ? null : document.getElementById('progress-text')?.textContent,
+    mesh: document.getElementById('mesh-name')?.textContent, focus: document.activeElement?.id }));
   await page.goto(url);
   check(await page.$('#demo') !== null, 'the page is not built: run `make studio` (npm ci and vite build in studio/)');
 
@@ -77,6 +102,16 @@ try {
   // one on screen.
   const settled = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r, after);
   const revisionNow = () => page.evaluate(() => window.studio.state.revision);
+  // Idle with a full result later than the given revision on screen.
+  const full = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r &&
+    !window.studio.state.stats.preview, after);
+  // Does what changes a setting and waits for its full result. The revision is read
+  // before the change: read after, a quick result could already be on screen.
+  const change = async (action) => {
+    const before = await revisionNow();
+    await action();
+    await full(before);
+  };
 
   // axe-core in the page: no serious or critical violation of the rules it checks.
   const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
@@ -88,6 +123,7 @@ try {
     check(violations.length === 0, `axe-core, ${where}: ${violations.join('; ')}`);
   };
 
+  step('the welcome');
   // The first impression: a welcome in the view, the favicon, and nothing inaccessible.
   check(await page.isVisible('#welcome') && await page.isVisible('#welcome-demo'), 'the empty view welcomes with what to do');
   const favicon = await page.evaluate(async () => {
@@ -100,6 +136,7 @@ try {
   await accessible('welcome');
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_welcome.png') });
 
+  step('opening a mesh by keyboard');
   // A keyboard alone opens a mesh: Tab reaches the open button, Enter opens the file chooser.
   const torus = path.join(outputFolder, 'studio_e2e_torus.obj');
   await new Promise((resolve, reject) => spawn(binary, ['generate', 'torus', '--faces', '400', '-o', torus], { stdio: 'ignore' })
@@ -115,12 +152,14 @@ try {
   const opened = await page.textContent('#mesh-name');
   check(opened.startsWith('studio_e2e_torus.obj: ') && !await page.isVisible('#welcome'), `opened by keyboard: ${opened}`);
 
+  step('the demo model');
   await page.click('#demo');
   await page.waitForFunction(() => document.getElementById('mesh-name').textContent.startsWith('pretzel.obj'));
   await page.waitForFunction(() => window.studio.idle() && window.studio.state.stats && !window.studio.state.stats.preview);
   check((await page.evaluate(() => window.studio.resultInfo())).lines, 'the demo model first shows its curve');
   await accessible('the demo\'s curve');
 
+  step('the spacing and branches sliders');
   // Size and density: turning the spacing on shows the measured median gap beside the
   // slider's value; moving the slider (log scale) changes it; the branches slider sets the
   // tree's leaves. Both are turned off again for what follows.
@@ -130,40 +169,29 @@ try {
     s.dispatchEvent(new Event('input', { bubbles: true }));
     s.dispatchEvent(new Event('change', { bubbles: true }));
   }, [id, value]);
-  const full = (after) => page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r &&
-    !window.studio.state.stats.preview, after);
-  let revision = await page.evaluate(() => window.studio.state.revision);
-  await page.check('#spacing-on');
-  await full(revision);
+  await change(() => page.check('#spacing-on'));
   const coarse = await page.evaluate(() => ({ stats: window.studio.state.stats, shown: document.getElementById('spacing-value').textContent }));
   check(coarse.stats.gap_median > 0 && coarse.stats.gap_cv < 0.15,
     `a spacing shows an even curve's median gap (${JSON.stringify(coarse.stats)})`);
   check(Math.abs(coarse.stats.gap_median / Number(coarse.shown) - 1) < 0.15,
     `the median gap ${coarse.stats.gap_median} is the spacing shown, ${coarse.shown}`);
-  revision = await page.evaluate(() => window.studio.state.revision);
-  await sliderTo('spacing', '30');
-  await full(revision);
+  await change(() => sliderTo('spacing', '30'));
   const fine = await page.evaluate(() => window.studio.state.stats);
   check(fine.gap_median < 0.8 * coarse.stats.gap_median && fine.curve_length > coarse.stats.curve_length,
     `moving the spacing slider down gives a finer, longer curve (${fine.gap_median} after ${coarse.stats.gap_median})`);
-  revision = await page.evaluate(() => window.studio.state.revision);
-  await page.check('#branches-on');
-  await sliderTo('branches', '0');
-  await full(revision);
+  await change(async () => {
+    await page.check('#branches-on');
+    await sliderTo('branches', '0');
+  });
   const snakes = await page.evaluate(() => window.studio.state.stats.leaves);
-  revision = await page.evaluate(() => window.studio.state.revision);
-  await sliderTo('branches', '1');
-  await full(revision);
+  await change(() => sliderTo('branches', '1'));
   const bushes = await page.evaluate(() => window.studio.state.stats.leaves);
   check(snakes > 0 && bushes > snakes, `the branches slider from 0 to 1 gives more branch tips (${snakes} -> ${bushes})`);
-  revision = await page.evaluate(() => window.studio.state.revision);
-  await page.uncheck('#branches-on');
-  await full(revision);
-  revision = await page.evaluate(() => window.studio.state.revision);
-  await page.uncheck('#spacing-on');
-  await full(revision);
+  await change(() => page.uncheck('#branches-on'));
+  await change(() => page.uncheck('#spacing-on'));
   check((await page.evaluate(() => window.studio.state.stats)).gap_median === undefined, 'without a spacing no gap is measured');
 
+  step('a variable wire');
   // The control mesh (no subdivision) keeps the test quick; the wire is made all the same.
   await page.evaluate(() => {
     const levels = document.getElementById('levels');
@@ -177,6 +205,7 @@ try {
   check(!before.info.lines && before.info.vertices > 0, 'variable wire shows a mesh');
   check(await page.inputValue('#tree') === 'shaped', 'a variable wire starts from the shaped tree, as the CLI\'s');
 
+  step('a preview while dragging, then the full result');
   // Dragging the slider ('input') shows a preview, without the printability report and
   // not offered for download; letting it go ('change') brings the full result.
   const slide = (type) => page.evaluate((t) => {
@@ -201,6 +230,7 @@ try {
     `moving s did not change the wire (bounding box moved by ${moved})`);
   check(after.stats.watertight === true && after.stats.self_intersecting === false, 'the variable wire is watertight and clear');
 
+  step('the download');
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('a[data-file="result.stl"]')]);
   const stlPath = path.join(outputFolder, 'studio_e2e.stl');
   await download.saveAs(stlPath);
@@ -213,13 +243,14 @@ try {
 
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e.png') });
 
+  step('a seed change');
   // Any other change (here the seed field) shows its preview first, then the full result.
   await page.evaluate(() => {
     window.seenStats = [];
     new MutationObserver(() => window.seenStats.push(document.querySelector('#stats td')?.textContent))
       .observe(document.getElementById('stats'), { childList: true, subtree: true });
   });
-  const seedRevision = await page.evaluate(() => window.studio.state.revision);
+  const seedRevision = await revisionNow();
   await page.fill('#seed', '12345');
   check(await page.evaluate(() => window.studio.idle()), 'typing in a number field asks for nothing until Enter');
   await page.press('#seed', 'Enter');
@@ -228,6 +259,7 @@ try {
   check(seen.length >= 2 && seen[0].startsWith('preview') && seen.at(-1) === 'full result',
     `a seed change shows a preview, then the full result (stats seen: ${JSON.stringify(seen)})`);
 
+  step('a held job replaced');
   // Cancel and replace: a job held on the server (the test hook: no test waits on a slow
   // job) is cancelled by a newer change, and the page shows the newer result.
   const heldRevision = await revisionNow();
@@ -247,6 +279,7 @@ try {
   const busyOnServer = () => page.evaluate(async () => (await (await fetch(`/api/progress/${window.studio.state.session}`)).json()).busy);
   check(!await busyOnServer(), 'the held job is gone from the server');
 
+  step('Stop');
   // Stop: the held job is cancelled on the server and the view keeps what it showed.
   const beforeStop = await revisionNow();
   await page.evaluate(() => window.studio.holdNext());
@@ -265,6 +298,7 @@ try {
   await page.waitForFunction((r) => window.studio.idle() && window.studio.state.revision > r && !window.studio.state.stats.preview, beforeStop);
   check(await page.isHidden('#notice'), 'the full result made, the notice goes');
 
+  step('a refused full result');
   // A full result refused as too large (the server's --max-result) after its preview:
   // the page says the view is the preview and why, and offers no download.
   const beforeRefusal = await revisionNow();
@@ -282,14 +316,13 @@ try {
     download: document.querySelector('a[data-file="result.stl"]').getAttribute('aria-disabled') }));
   check(refused.of === 'preview (the full result was refused)' && refused.error.includes('--max-result') &&
     refused.notice?.includes('refused') && refused.download === 'true', `a refused full result leaves a clear state (${JSON.stringify(refused)})`);
-  const beforeLevels = await revisionNow();
-  await sliderTo('levels', '0');
-  await full(beforeLevels);
+  await change(() => sliderTo('levels', '0'));
   check(await page.isHidden('#error') && await page.isHidden('#notice'), 'a result made clears the refusal');
   await accessible('a variable wire');
 
+  step('a duotone');
   // Duotone: a textured surface in the scene (texture size kept small for speed).
-  const wireRevision = await page.evaluate(() => window.studio.state.revision);
+  const wireRevision = await revisionNow();
   await page.selectOption('#mode', 'duotone');
   check(await page.inputValue('#tree') === 'random', 'leaving the variable wire gives the random tree back');
   await page.selectOption('#texture-size', '256');
@@ -299,15 +332,14 @@ try {
   check(duotone.info.textured && duotone.stats.curves === 1, 'duotone shows a textured surface with one separating curve');
   check(duotone.info.texture === duotone.stats.texture, `the page shows the atlas of ${duotone.stats.texture}, not ${duotone.info.texture}`);
   // Other tiles bring their own atlas (a seed change keeps it: it depends on the tiles alone).
-  await page.selectOption('#tiles', 'dots');
-  await settled(await page.evaluate(() => window.studio.state.revision));
+  await change(() => page.selectOption('#tiles', 'dots'));
   const dots = await page.evaluate(() => ({ info: window.studio.resultInfo(), stats: window.studio.state.stats }));
   check(dots.stats.texture.startsWith('dots ') && dots.info.texture === dots.stats.texture,
     `after choosing dots the page shows the atlas of ${dots.info.texture} (stats: ${dots.stats.texture})`);
-  await page.selectOption('#tiles', 'truchet');
-  await settled(await page.evaluate(() => window.studio.state.revision));
+  await change(() => page.selectOption('#tiles', 'truchet'));
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_duotone.png') });
 
+  step('the URL, reload, undo and redo');
   // The settings live in the URL (a link shares them) and survive a reload; undo and
   // redo step through the changes.
   const search = await page.evaluate(() => location.search);
@@ -329,6 +361,7 @@ try {
   await page.click('#undo');
   check(await page.inputValue('#tiles') === 'truchet', 'the Undo button undoes too');
 
+  step('a phone\'s layout');
   // A phone, 390 px wide: the view keeps most of the screen, the settings fold under
   // their button, the stats stay in the view.
   await page.setViewportSize({ width: 390, height: 844 });
@@ -348,12 +381,14 @@ try {
   await accessible('390 px with the settings');
   await page.setViewportSize({ width: 1280, height: 800 });
 
+  step('a link with an unknown choice');
   // A link with a choice a menu does not have keeps that menu's default, and the rest.
   await page.goto(`${url}?mode=nonsense&tiles=dots`);
   await page.waitForSelector('#welcome');
   const linked = await page.evaluate(() => [document.getElementById('mode').value, document.getElementById('tiles').value]);
   check(linked[0] === 'curve' && linked[1] === 'dots', `an unknown mode in a link falls back to the default (${linked})`);
 
+  step('a bad file');
   // A bad file: the page shows the reader's precise message and the server keeps going.
   await page.setInputFiles('#file', { name: 'bad.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 0\nf 1 2 7\n') });
   await page.waitForSelector('#error:not([hidden])');
