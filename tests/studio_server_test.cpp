@@ -258,7 +258,7 @@ TEST_F(StudioServerTest, TwentyConcurrentRequestsSucceedOrAreReplaced) {
   const auto view = client().Get("/api/result/" + session + "/view.bin");
   ASSERT_TRUE(view);
   EXPECT_EQ(view->status, 200);
-  EXPECT_EQ(view->body.substr(0, 4), "MND2");
+  EXPECT_EQ(view->body.substr(0, 4), "MND3");
 }
 
 TEST(StudioRequestRefusal, HostMustNameThisServer) {

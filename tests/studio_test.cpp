@@ -255,10 +255,10 @@ TEST(Studio, ResultSizeIsKnownBeforeAnyWork) {
     }
 }
 
-// A preview that 2 curve samples would make larger than its budget (1M elements) takes
-// 1, and a wire still over it is drawn as its ribbon: on a 4,000-face sphere (12,000
-// triangles of the cycle), a 32-sided wire has 1.5M triangles at 2 samples and 0.77M at
-// 1; a 64-sided one 1.5M at 1.
+// A preview that 2 curve samples would make larger than its budget takes 1, and a wire
+// still over it is drawn as its ribbon: on a 4,000-face sphere (12,000 triangles of the
+// cycle), a 16-sided wire has 0.77M triangles at 2 samples and 0.38M at 1; a 32-sided one
+// 0.77M at 1.
 TEST(Studio, APreviewOverItsBudgetTakesFewerSamplesThenARibbon) {
   StudioSurface surface{.name = "sphere.obj"};
   surface.repaired = repair(make_shape("sphere", 4000), surface.name);
@@ -267,22 +267,22 @@ TEST(Studio, APreviewOverItsBudgetTakesFewerSamplesThenARibbon) {
     p.wire.curve.curve.samples = samples;
     return p;
   };
-  ASSERT_GT(studio_result_size(surface, at(32, 2)), 1'000'000);
-  ASSERT_LE(studio_result_size(surface, at(32, 1)), 1'000'000);
-  StudioParams fewer = at(32, 4);
+  ASSERT_GT(studio_result_size(surface, at(16, 2)), studio_preview_budget);
+  ASSERT_LE(studio_result_size(surface, at(16, 1)), studio_preview_budget);
+  StudioParams fewer = at(16, 4);
   fewer.preview = true;
-  EXPECT_EQ(studio_result_size(surface, fewer), studio_result_size(surface, at(32, 1)));
+  EXPECT_EQ(studio_result_size(surface, fewer), studio_result_size(surface, at(16, 1)));
   const StudioResult one = make_studio_result(surface, fewer);
   EXPECT_EQ(one.params.wire.curve.curve.samples, 1);
   EXPECT_EQ(one.params.wire.shape, WireShape::wire);
-  EXPECT_EQ(one.triangles, studio_result_size(surface, at(32, 1)));
+  EXPECT_EQ(one.triangles, studio_result_size(surface, at(16, 1)));
   EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(one)).contains("preview_as_ribbon"));
-  StudioParams wide = at(64, 4);
+  StudioParams wide = at(32, 4);
   wide.preview = true;
-  ASSERT_GT(studio_result_size(surface, at(64, 1)), 1'000'000);
+  ASSERT_GT(studio_result_size(surface, at(32, 1)), studio_preview_budget);
   const StudioResult ribbon = make_studio_result(surface, wide);
   EXPECT_EQ(ribbon.params.wire.shape, WireShape::ribbon);
-  EXPECT_EQ(ribbon.triangles, studio_result_size(surface, at(64, 1, StudioMode::constant_ribbon)));
+  EXPECT_EQ(ribbon.triangles, studio_result_size(surface, at(32, 1, StudioMode::constant_ribbon)));
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(ribbon))["preview_as_ribbon"], true);
   // Within the budget a preview keeps its 2 samples.
   StudioParams narrow{.mode = StudioMode::constant_wire, .preview = true};
@@ -404,6 +404,55 @@ TEST(Studio, ViewBytesHoldTheFacesAndSegments) {
   EXPECT_EQ(textured.flags, 3u);
   EXPECT_EQ(textured.texcoords[4], 1.0f); // corner 2 is (1, 1)
   EXPECT_EQ(textured.texcoords[5], 1.0f);
+}
+
+// Whatever the numbering of its vertices (first use; with texture coordinates, each
+// distinct (vertex, texture coordinate) pair of the corners), the view draws the result's
+// triangles, in order, each corner at its position (within a quantization step) with its
+// texture coordinate (within a 16-bit step): a duotone (textured quads) and a ribbon.
+TEST(Studio, TheViewDrawsTheResultsTrianglesCornerByCorner) {
+  const StudioSurface surface = demo_surface();
+  for (const StudioMode mode : {StudioMode::duotone, StudioMode::variable_ribbon}) {
+    StudioParams params;
+    params.mode = mode;
+    params.wire.levels = 0;
+    params.duotone.subdivide = 0;
+    params.duotone.tiles.texture_size = 64;
+    const StudioResult result = make_studio_result(surface, params);
+    const PolygonMesh& mesh = result.mesh;
+    const std::vector<TexCoord>& uv = result.appearance.texcoords;
+    const bool textured = mode == StudioMode::duotone;
+    ASSERT_EQ(!uv.empty(), textured);
+    const test::DecodedView view = test::decode_view(studio_view_bytes(mesh, {}, result.appearance));
+    ASSERT_TRUE(view.ok);
+    // Fewer vertices than corners where corners share them.
+    EXPECT_LT(view.vertices, textured ? mesh.face_vertices.size() : mesh.positions.size() + 1) << int(mode);
+    const float step = std::max({view.box[3] - view.box[0], view.box[4] - view.box[1], view.box[5] - view.box[2]}) / 65535;
+    size_t t = 0, mismatches = 0;
+    for (int32_t f = 0; f < mesh.num_faces(); ++f)
+      for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i, ++t) {
+        ASSERT_LT(t, size_t(view.triangles));
+        const std::array<int32_t, 3> corners{mesh.face_start[f], mesh.face_start[f] + i, mesh.face_start[f] + i + 1};
+        // The index codec may rotate a triangle's corners: find the rotation.
+        bool found = false;
+        for (int r = 0; r < 3 && !found; ++r) {
+          found = true;
+          for (int k = 0; k < 3 && found; ++k) {
+            const int32_t c = corners[size_t((k + r) % 3)];
+            const uint32_t drawn = view.triangle_indices[3 * t + size_t(k)];
+            const Vec3 p = mesh.positions[size_t(mesh.face_vertices[size_t(c)])];
+            const float expected[3] = {p.x, p.y, p.z};
+            for (size_t a = 0; a < 3; ++a) found = found && std::abs(view.positions[3 * drawn + a] - expected[a]) <= step;
+            if (textured)
+              found = found && std::abs(view.texcoords[2 * drawn] - uv[size_t(c)].u) <= 1.0f / 65535 &&
+                      std::abs(view.texcoords[2 * drawn + 1] - uv[size_t(c)].v) <= 1.0f / 65535;
+          }
+        }
+        mismatches += !found;
+      }
+    EXPECT_EQ(t, size_t(view.triangles)) << int(mode);
+    EXPECT_EQ(mismatches, 0u) << int(mode) << ": triangles whose corners the view moved";
+  }
 }
 
 // render.png as the page's view shows it: its size, and its camera.

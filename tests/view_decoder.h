@@ -19,14 +19,14 @@ struct DecodedView {
   float box[6] = {};
   std::vector<float> positions;     // 3 per vertex, from their 16-bit steps of the box's largest side
   std::vector<int8_t> normals;      // 4 per vertex (x, y, z, 0), with flag 2
-  std::vector<float> texcoords;     // 2 per vertex, with flag 1
+  std::vector<float> texcoords;     // 2 per vertex, from their 16-bit fractions, with flag 1
   std::vector<uint32_t> triangle_indices, segment_indices;
   bool ok = false; // every array decoded and the bytes used up
 };
 
 inline DecodedView decode_view(const std::string& bytes) {
   DecodedView view;
-  if (bytes.size() < 48 || bytes.substr(0, 4) != "MND2") {
+  if (bytes.size() < 48 || bytes.substr(0, 4) != "MND3") {
     ADD_FAILURE() << "not a view: " << bytes.substr(0, 4);
     return view;
   }
@@ -59,7 +59,12 @@ inline DecodedView decode_view(const std::string& bytes) {
   view.positions.resize(3 * v);
   for (size_t i = 0; ok && i < 3 * v; ++i) view.positions[i] = view.box[i % 3] + float(steps[i + i / 3]) / 65535 * side;
   if (ok && (view.flags & 2)) ok = vertices(view.normals, 4);
-  if (ok && (view.flags & 1)) ok = vertices(view.texcoords, 2);
+  if (ok && (view.flags & 1)) {
+    std::vector<uint16_t> fractions;
+    ok = vertices(fractions, 2);
+    view.texcoords.assign(fractions.begin(), fractions.end());
+    for (float& t : view.texcoords) t /= 65535;
+  }
   if (ok && view.triangles > 0) {
     view.triangle_indices.resize(3 * size_t(view.triangles));
     ok = next([&](const unsigned char* data, size_t size) {

@@ -37,6 +37,11 @@ enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, va
 // "variable-ribbon" | "duotone"; throws UsageError otherwise.
 StudioMode parse_studio_mode(std::string_view name);
 
+// A preview holds at most about this many elements (triangles, or a curve's segments)
+// when fewer curve samples, or a wire drawn as its ribbon, can make it so: the page takes
+// a preview of half a million triangles in about 0.2 s here (docs/studio.md, Speed).
+constexpr int64_t studio_preview_budget = 500'000;
+
 // What to make: the mode and the parameters of every mode's job (parameters.h), as the
 // page keeps them all. Curve mode runs wire.curve (make_curve), the wire modes `wire`
 // (its method and shape are the mode's), duotone `duotone`.
@@ -46,8 +51,8 @@ struct StudioParams {
   DuotoneJob duotone;
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
-  // larger than 1M elements, studio_result_size), a wire still over that drawn as its
-  // ribbon, levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
+  // larger than studio_preview_budget, studio_result_size), a wire still over it drawn as
+  // its ribbon, levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
   // `radius auto` unchecked (see make_studio_result), a variable wire's self-intersections
   // not cleared (WireJob::clear), and no printability report. The full result follows it.
   bool preview = false;
@@ -153,18 +158,14 @@ enum class StudioFile {
 // "result.zip", "curve.svg", "render.png"; throws UsageError for any other name.
 StudioFile parse_studio_file(std::string_view name);
 
-// Geometry for the page's three.js view, little-endian: "MNDR", uint32 vertex count V,
-// quad count Q, triangle count T, segment count S and flags F (bit 0: texture
-// coordinates, bit 1: normals), the bounding box of the positions as 6 float32 (min x,
-// y, z, max x, y, z); then V*3 float32 positions; if F has bit 1 (there are faces), V*3
-// int8 unit normals times 127 (area-weighted, vertex_normals; zero for the curve's
-// points) padded with zeros to a multiple of 4 bytes; if F has bit 0, V*2 float32
-// texture coordinates; Q*4 uint32 vertex indices of the quads (drawn as the triangles
-// 0-1-2 and 0-2-3), T*3 uint32 vertex indices of the triangles (the other polygons
-// fanned), S*2 uint32 indices of line segments (closed curves). With texture
-// coordinates (an appearance that has them) every face corner is a vertex of its own,
-// as texture seams need, with its vertex's normal. The page splits the quads and
-// otherwise draws the arrays as they are, with no loop over the vertices.
+// Geometry for the page's three.js view (docs/studio.md, "view.bin"): "MND3", the counts,
+// flags and bounding box, then each array compressed by meshoptimizer's codecs: 16-bit
+// quantized positions, int8 normals (when there are faces), 16-bit texture coordinates
+// (with an appearance that has them), triangles (polygons fanned), line segments (the
+// curves). The vertices are numbered as the triangles first use them, the curves' points
+// after them; with texture coordinates each distinct (vertex, texture coordinate) pair of
+// the corners is a vertex. The page decodes the arrays where the geometry uses them, with
+// no loop over the vertices.
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance = {});
 
 struct StudioDownload {

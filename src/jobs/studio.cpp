@@ -1,6 +1,7 @@
 #include "meander/studio.h"
 
 #include "io/binary.h"
+#include "meander/default_init.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/parameters.h"
@@ -10,6 +11,7 @@
 
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <random>
 
@@ -290,12 +293,6 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   return wire_triangles(cycle, wire);
 }
 
-// A preview holds at most about this many elements when fewer curve samples, or a wire
-// drawn as its ribbon, can make it so: the browser takes a view of a million triangles
-// (about 20 MB) in about 0.2 s here, and its time grows with the bytes (docs/studio.md,
-// Speed).
-constexpr int64_t preview_budget = 1'000'000;
-
 // What is made: the wire's method and shape the mode's, and a preview's reductions
 // (StudioParams::preview).
 StudioParams effective(const StudioSurface& surface, StudioParams params) {
@@ -312,9 +309,9 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   params.wire.report = false;
   params.wire.clear = false; // the search for self-intersections costs more than the wire
   params.duotone.subdivide = 0;
-  while (samples > 1 && result_size(surface, params) > preview_budget) --samples;
+  while (samples > 1 && result_size(surface, params) > studio_preview_budget) --samples;
   // A wire of 8 sides, or of slabs, has 4 to 8 times the triangles of its ribbon.
-  if ((mode == StudioMode::constant_wire || mode == StudioMode::variable_wire) && result_size(surface, params) > preview_budget)
+  if ((mode == StudioMode::constant_wire || mode == StudioMode::variable_wire) && result_size(surface, params) > studio_preview_budget)
     params.wire.shape = WireShape::ribbon;
   return params;
 }
@@ -481,14 +478,57 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
     segments += n < 2 ? 0 : (open ? n - 1 : n);
   }
   const bool shaded = triangles > 0;
-  const int64_t mesh_vertices = textured ? int64_t(mesh.face_vertices.size()) : int64_t(mesh.positions.size());
-  const int64_t vertices = mesh_vertices + int64_t(curves.points.size());
-  if (vertices > UINT32_MAX / 2 || 3 * triangles > UINT32_MAX / 2 || 2 * segments > UINT32_MAX / 2)
+  if (int64_t(mesh.face_vertices.size()) + int64_t(curves.points.size()) > UINT32_MAX / 2 || 3 * triangles > UINT32_MAX / 2 ||
+      2 * segments > UINT32_MAX / 2)
     throw UsageError("result too large for the view (over 2^31 elements)");
-  const size_t v = size_t(vertices);
-  // With texture coordinates, which belong to the corners, every corner is a vertex.
-  auto corner_vertex = [&mesh](int32_t c) { return size_t(mesh.face_vertices[size_t(c)]); };
-  auto index = [&](int32_t c) { return uint32_t(textured ? size_t(c) : corner_vertex(c)); };
+
+  // The mesh's view vertices: its vertices, or with texture coordinates each distinct
+  // (vertex, texture coordinate) pair of its corners, as texture seams need (a duotone's
+  // corners share about a third of them). `source` is a view vertex's first corner, or
+  // its vertex; `corner_of` a corner's view vertex.
+  std::vector<uint32_t> corner_of, source;
+  if (textured) {
+    const size_t n = mesh.positions.size();
+    std::vector<uint32_t> first(n + 1, 0), corners(mesh.face_vertices.size());
+    for (const int32_t v : mesh.face_vertices) ++first[size_t(v) + 1];
+    for (size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (size_t c = 0; c < mesh.face_vertices.size(); ++c) corners[fill[size_t(mesh.face_vertices[c])]++] = uint32_t(c);
+    corner_of.resize(mesh.face_vertices.size());
+    for (size_t v = 0; v < n; ++v) {
+      const size_t distinct = source.size();
+      for (uint32_t i = first[v]; i < first[v + 1]; ++i) {
+        const uint32_t c = corners[i];
+        size_t k = distinct;
+        while (k < source.size() && !(appearance.texcoords[source[k]] == appearance.texcoords[c])) ++k;
+        if (k == source.size()) source.push_back(c);
+        corner_of[c] = uint32_t(k);
+      }
+    }
+  } else {
+    source.resize(mesh.positions.size());
+    std::iota(source.begin(), source.end(), 0u);
+  }
+  std::vector<uint32_t> indices;
+  indices.reserve(size_t(3 * triangles));
+  // Polygons fanned: corners (start, start + i, start + i + 1); a quad as 0-1-2, 0-2-3.
+  for (int32_t f = 0; f < mesh.num_faces(); ++f)
+    for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
+      for (const int32_t c : {0, i, i + 1}) {
+        const size_t corner = size_t(mesh.face_start[f] + c);
+        indices.push_back(textured ? corner_of[corner] : uint32_t(mesh.face_vertices[corner]));
+      }
+  // Numbered in the order the triangles first use them (vertices no face uses left out),
+  // which halves what the index codec makes of a ribbon's strips.
+  std::vector<uint32_t> order(source.size());
+  const size_t mesh_vertices =
+      meshopt_optimizeVertexFetchRemap(order.data(), indices.data(), indices.size(), source.size());
+  for (uint32_t& i : indices) i = order[i];
+  std::vector<uint32_t> sources(mesh_vertices); // the view's mesh vertices' sources, in order
+  for (size_t k = 0; k < source.size(); ++k)
+    if (order[k] != ~0u) sources[order[k]] = source[k];
+  auto vertex_of = [&](uint32_t s) { return size_t(textured ? mesh.face_vertices[s] : int32_t(s)); };
+  const size_t v = mesh_vertices + curves.points.size();
 
   std::string out(48, '\0');
   char* at = out.data();
@@ -496,9 +536,9 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
     io::store_little_endian(at, value);
     at += sizeof(value);
   };
-  std::memcpy(at, "MND2", 4);
+  std::memcpy(at, "MND3", 4);
   at += 4;
-  put(uint32_t(vertices));
+  put(uint32_t(v));
   put(uint32_t(triangles));
   put(uint32_t(segments));
   put(uint32_t((textured ? 1 : 0) | (shaded ? 2 : 0)));
@@ -508,83 +548,96 @@ std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, 
   for (const float x : {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z}) put(x);
   // Each array compressed by meshoptimizer's codecs (the page decodes them with its
   // WebAssembly decoder, which three.js ships): the browser took a view's bytes at about
-  // 50 MB/s here, most of a preview's time. Each as its byte count, then the bytes,
+  // 50 MB/s here, most of a preview's time. The arrays are made side by side (each codec
+  // is sequential), then written in order: each as its byte count, then the bytes,
   // padded to 4.
-  std::vector<unsigned char> encoded;
-  auto append = [&](size_t size) {
-    const uint32_t count = uint32_t(size);
+  using Bytes = UninitVector<unsigned char>; // the codecs' bounds are generous: not zeroed
+  auto encode_vertices = [v](const void* data, size_t size) {
+    Bytes encoded(meshopt_encodeVertexBufferBound(v, size));
+    encoded.resize(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, v, size));
+    return encoded;
+  };
+  Bytes positions, normals, texcoords, faces, lines;
+  tbb::parallel_invoke(
+      [&] {
+        // Positions as 16-bit steps of the box's largest side from its low corner (a
+        // 65,535th of it: finer than a pixel of any view), which the vertex codec packs to
+        // a third of float32's bytes; a 4th zero, as for the normals.
+        const double scale = 65535 / std::max(double(box.largest_side()), 1e-30);
+        std::vector<std::array<uint16_t, 4>> quantized;
+        quantized.reserve(v);
+        auto quantize = [&](Vec3 p) { // rounded, without a libm call per coordinate
+          const double x[3] = {double(p.x) - box.min.x, double(p.y) - box.min.y, double(p.z) - box.min.z};
+          std::array<uint16_t, 4> q{};
+          for (int k = 0; k < 3; ++k) q[size_t(k)] = uint16_t(std::min(x[k] * scale + 0.5, 65535.0));
+          quantized.push_back(q);
+        };
+        for (const uint32_t s : sources) quantize(mesh.positions[vertex_of(s)]);
+        for (const Vec3& p : curves.points) quantize(p);
+        positions = encode_vertices(quantized.data(), sizeof(quantized[0]));
+      },
+      [&] {
+        if (shaded) {
+          // The normals are computed here, not in the page: a JavaScript loop over millions
+          // of triangles took longer than making a preview. A 4th byte of zero: the vertex
+          // codec takes elements of a multiple of 4 bytes.
+          const std::vector<Vec3> vertex_normal = vertex_normals(mesh);
+          std::vector<std::array<int8_t, 4>> packed(v, {0, 0, 0, 0});
+          auto pack = [](Vec3 n) { // rounded half away from zero, without a libm call per component
+            std::array<int8_t, 4> q{};
+            const float x[3] = {n.x, n.y, n.z};
+            for (int k = 0; k < 3; ++k) q[size_t(k)] = int8_t(x[k] * 127.0f + (x[k] < 0 ? -0.5f : 0.5f));
+            return q;
+          };
+          for (size_t i = 0; i < mesh_vertices; ++i) packed[i] = pack(vertex_normal[vertex_of(sources[i])]);
+          normals = encode_vertices(packed.data(), 4); // the curve's points have no normal: zero
+        }
+        if (textured) {
+          // As 16-bit fractions of the atlas (an eighth of a texel of the largest, 8192
+          // wide), which the vertex codec packs smaller than float32.
+          std::vector<std::array<uint16_t, 2>> uv(v, {0, 0}); // the curve's points: (0, 0)
+          auto fraction = [](float x) { return uint16_t(std::clamp(x, 0.0f, 1.0f) * 65535.0f + 0.5f); };
+          for (size_t i = 0; i < mesh_vertices; ++i) {
+            const TexCoord& t = appearance.texcoords[sources[i]];
+            uv[i] = {fraction(t.u), fraction(t.v)};
+          }
+          texcoords = encode_vertices(uv.data(), sizeof(uv[0]));
+        }
+      },
+      [&] {
+        if (triangles > 0) {
+          faces.resize(meshopt_encodeIndexBufferBound(indices.size(), v));
+          faces.resize(meshopt_encodeIndexBuffer(faces.data(), faces.size(), indices.data(), indices.size()));
+        }
+        if (segments > 0) {
+          std::vector<uint32_t> ends;
+          ends.reserve(size_t(2 * segments));
+          const uint32_t base = uint32_t(mesh_vertices);
+          for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
+            const int32_t begin = curves.start[k], end = curves.start[k + 1];
+            if (end - begin < 2) continue;
+            for (int32_t i = begin; i + 1 < end; ++i) ends.insert(ends.end(), {base + uint32_t(i), base + uint32_t(i + 1)});
+            if (curves.open.empty() || !curves.open[k]) ends.insert(ends.end(), {base + uint32_t(end - 1), base + uint32_t(begin)});
+          }
+          lines.resize(meshopt_encodeIndexSequenceBound(ends.size(), v));
+          lines.resize(meshopt_encodeIndexSequence(lines.data(), lines.size(), ends.data(), ends.size()));
+        }
+      });
+  auto append = [&out](const Bytes& bytes) {
     char length[4];
-    io::store_little_endian(length, count);
+    io::store_little_endian(length, uint32_t(bytes.size()));
     out.append(length, 4);
-    out.append(reinterpret_cast<const char*>(encoded.data()), size);
-    out.append((4 - size % 4) % 4, '\0');
+    out.append(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    out.append((4 - bytes.size() % 4) % 4, '\0');
   };
-  auto append_vertices = [&](const void* data, size_t size) {
-    encoded.resize(meshopt_encodeVertexBufferBound(v, size));
-    append(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, v, size));
-  };
-  {
-    // Positions as 16-bit steps of the box's largest side from its low corner (a
-    // 65,535th of it: finer than a pixel of any view), which the vertex codec packs to a
-    // third of float32's bytes; a 4th zero, as for the normals.
-    const double scale = 65535 / std::max(double(box.largest_side()), 1e-30);
-    std::vector<std::array<uint16_t, 4>> quantized;
-    quantized.reserve(v);
-    auto quantize = [&](Vec3 p) { // rounded, without a libm call per coordinate
-      const double x[3] = {double(p.x) - box.min.x, double(p.y) - box.min.y, double(p.z) - box.min.z};
-      std::array<uint16_t, 4> q{};
-      for (int k = 0; k < 3; ++k) q[size_t(k)] = uint16_t(std::min(x[k] * scale + 0.5, 65535.0));
-      quantized.push_back(q);
-    };
-    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) quantize(mesh.positions[corner_vertex(c)]);
-    else for (const Vec3& p : mesh.positions) quantize(p);
-    for (const Vec3& p : curves.points) quantize(p);
-    append_vertices(quantized.data(), sizeof(quantized[0]));
-  }
-  if (shaded) {
-    // The normals are computed here, not in the page: a JavaScript loop over millions of
-    // triangles took longer than making a preview. A 4th byte of zero: the vertex codec
-    // takes elements of a multiple of 4 bytes.
-    const std::vector<Vec3> normals = vertex_normals(mesh);
-    std::vector<std::array<int8_t, 4>> packed(v, {0, 0, 0, 0});
-    auto pack = [](Vec3 n) { // rounded half away from zero, without a libm call per component
-      std::array<int8_t, 4> q{};
-      const float x[3] = {n.x, n.y, n.z};
-      for (int k = 0; k < 3; ++k) q[size_t(k)] = int8_t(x[k] * 127.0f + (x[k] < 0 ? -0.5f : 0.5f));
-      return q;
-    };
-    if (textured) for (int32_t c = 0; c < mesh.num_corners(); ++c) packed[size_t(c)] = pack(normals[corner_vertex(c)]);
-    else for (size_t i = 0; i < normals.size(); ++i) packed[i] = pack(normals[i]);
-    append_vertices(packed.data(), 4); // the curve's points have no normal: zero
-  }
-  if (textured) {
-    std::vector<TexCoord> uv(appearance.texcoords);
-    uv.resize(v); // the curve's points: (0, 0)
-    append_vertices(uv.data(), sizeof(TexCoord));
-  }
-  if (triangles > 0) {
-    // Polygons fanned: corners (start, start + i, start + i + 1); a quad as 0-1-2, 0-2-3.
-    std::vector<uint32_t> indices;
-    indices.reserve(size_t(3 * triangles));
-    for (int32_t f = 0; f < mesh.num_faces(); ++f)
-      for (int32_t i = 1; i + 1 < mesh.face_size(f); ++i)
-        for (int32_t c : {0, i, i + 1}) indices.push_back(index(mesh.face_start[f] + c));
-    encoded.resize(meshopt_encodeIndexBufferBound(indices.size(), v));
-    append(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices.data(), indices.size()));
-  }
-  if (segments > 0) {
-    std::vector<uint32_t> indices;
-    indices.reserve(size_t(2 * segments));
-    const uint32_t base = uint32_t(mesh_vertices);
-    for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
-      const int32_t begin = curves.start[k], end = curves.start[k + 1];
-      if (end - begin < 2) continue;
-      for (int32_t i = begin; i + 1 < end; ++i) indices.insert(indices.end(), {base + uint32_t(i), base + uint32_t(i + 1)});
-      if (curves.open.empty() || !curves.open[k]) indices.insert(indices.end(), {base + uint32_t(end - 1), base + uint32_t(begin)});
-    }
-    encoded.resize(meshopt_encodeIndexSequenceBound(indices.size(), v));
-    append(meshopt_encodeIndexSequence(encoded.data(), encoded.size(), indices.data(), indices.size()));
-  }
+  size_t size = out.size();
+  for (const Bytes* bytes : {&positions, &normals, &texcoords, &faces, &lines}) size += 4 + (bytes->size() + 3) / 4 * 4;
+  out.reserve(size);
+  append(positions);
+  if (shaded) append(normals);
+  if (textured) append(texcoords);
+  if (triangles > 0) append(faces);
+  if (segments > 0) append(lines);
   return out;
 }
 

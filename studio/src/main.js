@@ -62,17 +62,17 @@ function resize() {
 new ResizeObserver(resize).observe(container);
 resize();
 
-// The binary view format of studio.h (studio_view_bytes): "MND2", vertex, triangle and
+// The binary view format of studio.h (studio_view_bytes): "MND3", vertex, triangle and
 // segment counts, flags (1: texture coordinates, 2: normals), 0, the bounding box; then
 // each array compressed by meshoptimizer's codecs, as its byte count and bytes padded to
 // 4: uint16 positions (steps of a 65,535th of the box's largest side from its low
-// corner) and a zero, [int8 normals and a zero byte], [float32 texture coordinates],
+// corner) and a zero, [int8 normals and a zero byte], [uint16 texture coordinates],
 // [uint32 triangles], [uint32 segments]. The decoder (WebAssembly, from three.js) writes
 // each array where the geometry uses it: no loop over the vertices here (computing
 // normals in the page took longer than making a preview on the server).
 async function parseView(buffer) {
   await MeshoptDecoder.ready;
-  if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MND2') throw new Error('not a Meander view');
+  if (new TextDecoder().decode(new Uint8Array(buffer, 0, 4)) !== 'MND3') throw new Error('not a Meander view');
   const header = new DataView(buffer, 0, 24);
   const [v, t, s, flags] = [4, 8, 12, 16].map((at) => header.getUint32(at, true));
   const textured = (flags & 1) !== 0, shaded = (flags & 2) !== 0;
@@ -94,7 +94,7 @@ async function parseView(buffer) {
     const normals = new THREE.InterleavedBuffer(new Int8Array(next(v, 4, MeshoptDecoder.decodeVertexBuffer)), 4);
     geometry.setAttribute('normal', new THREE.InterleavedBufferAttribute(normals, 3, 0, true));
   }
-  if (textured) geometry.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(next(v, 8, MeshoptDecoder.decodeVertexBuffer)), 2));
+  if (textured) geometry.setAttribute('uv', new THREE.BufferAttribute(new Uint16Array(next(v, 4, MeshoptDecoder.decodeVertexBuffer)), 2, true));
   const lines = t === 0;
   const index = lines ? (s > 0 ? new Uint32Array(next(2 * s, 4, MeshoptDecoder.decodeIndexSequence)) : new Uint32Array(0))
     : new Uint32Array(next(3 * t, 4, MeshoptDecoder.decodeIndexBuffer));
