@@ -335,6 +335,10 @@ TEST(Studio, AConstantPreviewKeepsTheFullResultsRadiusOnTheSameCurve) {
   reseeded.wire.curve.cycle.seed = 9;
   const StudioResult other = make_studio_result(surface, reseeded, &full);
   EXPECT_EQ(other.radius, max_wire_radius(other.curve.curves, 2));
+  StudioParams spaced = sides; // another spacing is another curve too
+  spaced.wire.curve.spacing = 0.5;
+  const StudioResult remeshed = make_studio_result(surface, spaced, &full);
+  EXPECT_EQ(remeshed.radius, max_wire_radius(remeshed.curve.curves, 2));
   // Only a full result lends its radius, and only to the same mode.
   const StudioResult after_preview = make_studio_result(surface, sides, &same);
   EXPECT_EQ(after_preview.radius, max_wire_radius(after_preview.curve.curves, 2));
@@ -342,6 +346,30 @@ TEST(Studio, AConstantPreviewKeepsTheFullResultsRadiusOnTheSameCurve) {
   ribbon.mode = StudioMode::constant_ribbon;
   const StudioResult band = make_studio_result(surface, ribbon, &full);
   EXPECT_EQ(band.radius, max_wire_radius(band.curve.curves, 2));
+}
+
+// A wire's own slider (s, t, thickness, sides, radius) keeps the curve of the result
+// before when the same job made it; anything that changes the curve makes its own. The
+// result before is given a moved curve, so that the test sees which one was taken.
+TEST(Studio, AWiresSliderKeepsTheCurveOfTheResultBefore) {
+  const StudioSurface surface = demo_surface();
+  StudioParams ribbon{.mode = StudioMode::variable_ribbon, .preview = true};
+  ribbon.wire.levels = 0;
+  StudioResult before = make_studio_result(surface, ribbon);
+  for (Vec3& p : before.curve.curves.points) p = p + Vec3{1, 0, 0};
+  StudioParams wider = ribbon;
+  wider.wire.s = 0.3;
+  EXPECT_EQ(make_studio_result(surface, wider, &before).curve.curves.points, before.curve.curves.points);
+  const StudioResult fresh = make_studio_result(surface, wider);
+  EXPECT_NE(fresh.curve.curves.points, before.curve.curves.points);
+  StudioParams reseeded = wider, spaced = wider, wire = wider, full = wider;
+  reseeded.wire.curve.cycle.seed = 9;
+  spaced.wire.curve.spacing = 0.5;
+  wire.mode = StudioMode::constant_ribbon; // a curve without the variable wire's slab mesh
+  full.preview = false;                    // more samples and a relaxed curve
+  full.wire.report = false;
+  for (const StudioParams& other : {reseeded, spaced, wire, full})
+    EXPECT_EQ(make_studio_result(surface, other, &before).curve.curves.points, make_studio_result(surface, other).curve.curves.points);
 }
 
 TEST(Studio, UploadsOverTheFaceLimitAreRefused) {

@@ -23,6 +23,7 @@ struct NeedleCollapseOptions {
   // edge is half the cap long, and merging it would move the surface that far.
   double max_move = 0.1;
   int max_passes = 4; // each pass is linear; the faces around a collapse wait for the next
+  friend bool operator==(const NeedleCollapseOptions&, const NeedleCollapseOptions&) = default;
 };
 
 struct NeedleCollapses {

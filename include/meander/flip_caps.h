@@ -23,6 +23,7 @@ struct CapFlipOptions {
   // crease it would cut the corner off. A flat cap moves it little wherever it lies.
   double max_move = 0.1;
   int max_passes = 4; // each pass is linear; a flip can make a neighbour's flip possible
+  friend bool operator==(const CapFlipOptions&, const CapFlipOptions&) = default;
 };
 
 struct CapFlips {

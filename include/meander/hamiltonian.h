@@ -6,6 +6,7 @@
 #include "meander/quadrangulate.h"
 #include "meander/spanning_tree.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -29,6 +30,10 @@ struct CycleOptions {
   // empty: every quad starts split along corners 0-2. The duotone's flip rule starts
   // from random ones, as the paper's Section 5.3 does.
   std::span<const uint8_t> initial_diagonal;
+  friend bool operator==(const CycleOptions& a, const CycleOptions& b) { // the diagonals by content
+    return a.tree == b.tree && a.seed == b.seed && a.branches == b.branches && a.count_leaves == b.count_leaves &&
+           std::ranges::equal(a.initial_diagonal, b.initial_diagonal);
+  }
 };
 
 // The Hamiltonian cycles of the triangulated quad mesh. Cycle k is the triangles

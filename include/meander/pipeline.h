@@ -28,6 +28,7 @@ struct SlabMeshOptions {
   int star_sides = 5;
   std::optional<CapFlipOptions> caps = CapFlipOptions{};
   std::optional<NeedleCollapseOptions> needles = NeedleCollapseOptions{};
+  friend bool operator==(const SlabMeshOptions&, const SlabMeshOptions&) = default;
 };
 
 struct CurveJob {
@@ -55,6 +56,7 @@ struct CurveJob {
   // with `sample` false writes a PLY's edges while the cycle is made and its points while
   // the cycle is walked (CycleCurveWriter).
   std::filesystem::path output;
+  friend bool operator==(const CurveJob&, const CurveJob&) = default;
 };
 
 // Wall-clock seconds per stage, in the order the stages ran.

@@ -293,6 +293,13 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   return wire_triangles(cycle, wire);
 }
 
+// The job that makes the curve of a curve or wire mode.
+CurveJob studio_curve_job(const StudioParams& params) {
+  CurveJob job = params.mode == StudioMode::curve ? params.wire.curve : wire_curve_job(params.wire);
+  job.cycle.count_leaves = true;
+  return job;
+}
+
 // What is made: the wire's method and shape the mode's, and a preview's reductions
 // (StudioParams::preview).
 StudioParams effective(const StudioSurface& surface, StudioParams params) {
@@ -357,11 +364,13 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   }
   WireJob job = params.wire;
   job.measure_thickness = false; // the live view's stats: rays cost more than the wire
-  result.curve = about_surface([&] {
-    CurveJob curve_job = mode == StudioMode::curve ? job.curve : wire_curve_job(job);
-    curve_job.cycle.count_leaves = true;
-    return make_curve(input.mesh, input.connectivity, curve_job, nullptr, progress);
-  });
+  // The curve is the result before's when the same job made it (a wire's own slider is
+  // moving: s, t, thickness, sides, radius): the same curve, without its time.
+  const CurveJob curve_job = studio_curve_job(params);
+  if (previous && previous->params.mode != StudioMode::duotone && studio_curve_job(previous->params) == curve_job)
+    result.curve = previous->curve;
+  else
+    result.curve = about_surface([&] { return make_curve(input.mesh, input.connectivity, curve_job, nullptr, progress); });
   result.curve_length = total_length(result.curve.curves);
   // How even a curve of a chosen spacing came out, for the stats beside it.
   if (job.curve.spacing && !params.preview && result.curve.surface.num_faces() > 0) {
@@ -378,12 +387,11 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
     // does without it: it takes the radius of the full result before it when that was
     // made on the same curve (another slider is moving), so that the preview is as
     // thick as the result that follows; else the bound on its own, coarser curve.
-    const CurveJob& asked = requested.wire.curve;
+    StudioParams full = requested;
+    full.preview = false;
     const StudioParams* before = previous ? &previous->params : nullptr;
     const bool same_curve = before && !before->preview && before->mode == mode && !before->wire.radius && previous->radius > 0 &&
-                            before->wire.curve.quadrangulation == asked.quadrangulation &&
-                            before->wire.curve.cycle.tree == asked.cycle.tree && before->wire.curve.cycle.seed == asked.cycle.seed &&
-                            before->wire.curve.curve == asked.curve;
+                            studio_curve_job(*before) == studio_curve_job(effective(surface, full));
     if (progress) progress->begin("radius");
     const double radius = same_curve ? previous->radius
                                      : max_wire_radius(result.curve.curves,
