@@ -11,8 +11,10 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
                    clang-16 libclang-rt-16-dev
 # cpp-httplib: the studio's server (`meander serve`); meshoptimizer: its compressed views.
 DEBIAN_PACKAGES += libcpp-httplib-dev libmeshoptimizer-dev
+# The Python package (python/, for Debian's /usr/bin/python3) and its tests.
+DEBIAN_PACKAGES += pybind11-dev python3-dev python3-numpy python3-pytest
 
-.PHONY: deps build demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
+.PHONY: deps build install-python demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -26,6 +28,15 @@ BENCH ?= OFF
 build: deps studio
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMEANDER_BUILD_BENCH=$(BENCH) > /dev/null
 	cmake --build $(BUILD) -j $(JOBS)
+
+# The Python package (docs/python.md) into Debian's Python's site packages, where
+# /usr/bin/python3 imports it.
+PYTHON_SITE ?= $(shell /usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("platlib"))')
+install-python: build
+	$(SUDO) mkdir -p $(PYTHON_SITE)
+	$(SUDO) rm -rf $(PYTHON_SITE)/meander
+	$(SUDO) cp -r $(BUILD)/python/meander $(PYTHON_SITE)/meander
+	@echo "install-python: meander is in $(PYTHON_SITE)"
 
 demo: build
 	@mkdir -p out

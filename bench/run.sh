@@ -189,6 +189,15 @@ else
   echo "node or Chromium not installed: not measured (make test installs both)"
 fi
 
+# The Python package's overhead over the C++ call (docs/python.md): the same curve, median
+# of $runs each, in the same run.
+echo
+echo "## Python: \`meander.curve(mesh)\` against the C++ call (median of $runs)"
+echo
+echo "| call | Python | C++ | overhead (target <= 5%) |"
+echo "|---|---:|---:|---:|"
+PYTHONPATH=$build/python /usr/bin/python3 bench/python_overhead.py "$build" "$scratch/sphere_1m.ply" "$runs"
+
 # Google Benchmark's console table (medians), without the context lines it prints first.
 gbench_table() { echo '```'; "$@" | sed -n '/^---/,$p'; echo '```'; }
 

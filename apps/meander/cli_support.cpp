@@ -47,10 +47,8 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
     CLI::Option* option = app.add_option_function<std::string>(
         name,
         [&app, &p, &value](const std::string& text) {
-          if (p.length && &p != &parameters::model_size && &p != &parameters::nozzle && has_unit(text) && app.count(option_name(parameters::model_size.name)) == 0)
-            throw ParameterError(p.name, ": " + text + " carries a unit, which needs " +
-                                             option_name(parameters::model_size.name) +
-                                             " (without it, lengths are in the model's own units)");
+          const std::string model_size = option_name(parameters::model_size.name);
+          check_unit(p, text, app.count(model_size) > 0, model_size);
           set_parameter(p, text, value);
         },
         help);

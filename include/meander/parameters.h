@@ -40,9 +40,14 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
 template <class T> std::string parameter_text(const Parameter& p, const T& value);
 
 // Whether `text`, a value of a length parameter, carries a unit ("3mm", "4.7in"). A length
-// with a unit is read in millimetres; the CLI and the studio refuse one without a model
-// size (parameters::model_size), when lengths are in the model's own units.
+// with a unit is read in millimetres; check_unit refuses one without a model size.
 bool has_unit(std::string_view text);
+
+// Throws ParameterError when `text`, a value of parameter p, carries a unit while the job
+// has no model size (`sized`): lengths are then in the model's own units. The model size
+// and the nozzle (always in millimetres) may carry one. `model_size` is the model size's
+// name as the client spells it ("--model-size", "model_size").
+void check_unit(const Parameter& p, std::string_view text, bool sized, std::string_view model_size);
 
 // Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
 void check_parameter(const Parameter& p, double value, bool integer);

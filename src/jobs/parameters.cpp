@@ -94,6 +94,12 @@ bool has_unit(std::string_view text) {
          text.find_first_of("0123456789") != std::string_view::npos;
 }
 
+void check_unit(const Parameter& p, std::string_view text, bool sized, std::string_view model_size) {
+  if (p.length && !sized && &p != &parameters::model_size && &p != &parameters::nozzle && has_unit(text))
+    throw ParameterError(p.name, ": " + std::string(text) + " carries a unit, which needs " + std::string(model_size) +
+                                     " (without it, lengths are in the model's own units)");
+}
+
 void check_parameter(const Parameter& p, double value, bool integer) {
   if (!std::isfinite(value) || value < p.min || value > p.max || (integer && value != std::floor(value)))
     refuse_number(p, integer, number_text(value));

@@ -169,10 +169,8 @@ void refuse_units_without_model_size(const json& document, const StudioParams& p
   const auto check = [&](const auto& job) {
     visit_parameters(job, [&](const Parameter& parameter, const auto&) {
       const auto value = document.find(std::string(parameter.name));
-      if (parameter.length && &parameter != &parameters::nozzle && value != document.end() && value->is_string() && has_unit(value->template get<std::string>()))
-        throw ParameterError(parameter.name, ": " + value->template get<std::string>() +
-                                                 " carries a unit, which needs model_size (without it, lengths are in "
-                                                 "the model's own units)");
+      if (value != document.end() && value->is_string())
+        check_unit(parameter, value->template get<std::string>(), false, parameters::model_size.name);
     });
   };
   check(p.wire);
