@@ -14,7 +14,7 @@ DEBIAN_PACKAGES += libcpp-httplib-dev libmeshoptimizer-dev
 # The Python package (python/, for Debian's /usr/bin/python3) and its tests.
 DEBIAN_PACKAGES += pybind11-dev python3-dev python3-numpy python3-pytest
 
-.PHONY: deps build install-python demo test studio browser validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
+.PHONY: deps build install-python blender-addon demo test studio browser blender validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -38,6 +38,11 @@ install-python: build
 	$(SUDO) cp -r $(BUILD)/python/meander $(PYTHON_SITE)/meander
 	@echo "install-python: meander is in $(PYTHON_SITE)"
 
+# The Blender add-on with the compiled module inside (docs/blender.md): install the zip in
+# Blender (Edit > Preferences > Add-ons > Install).
+blender-addon: build
+	@echo "blender-addon: $(BUILD)/meander-blender.zip"
+
 demo: build
 	@mkdir -p out
 	./$(BUILD)/meander generate pretzel --faces 6400 -o out/pretzel.obj
@@ -50,7 +55,7 @@ demo: build
 
 # The suite in the Release build, the same suite again under the sanitizers (which also
 # builds the fuzz targets), then each fuzz target's seeds and a fixed number of inputs more.
-test: build validator browser
+test: build validator browser blender
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) test-sanitize
 	$(MAKE) fuzz-check
@@ -121,6 +126,13 @@ studio/dist/index.html: studio/package-lock.json studio/index.html studio/vite.c
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq nodejs npm; \
 	fi
 	cd studio && npm ci --no-audit --no-fund --loglevel=error && npm run --silent build > /dev/null
+
+# Debian's Blender for the add-on's test (ctest blender, which skips with a message where it
+# could not be installed, and fails under CI).
+blender:
+	@command -v blender > /dev/null || { echo "make test: installing Debian's blender for the add-on's test"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq blender \
+	  || echo "make test: blender could not be installed: the add-on's test will be skipped (failed under CI)"; }
 
 # Debian's chromium for the studio's browser test (ctest studio_e2e, which skips with a
 # message where it could not be installed, and fails under CI).

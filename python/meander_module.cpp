@@ -134,8 +134,8 @@ std::vector<int32_t> read_indices(py::handle value, const char* what, int dims) 
 
 // A mesh from numpy arrays: faces an (F, k) array of vertex indices, a list of faces of
 // any sizes, or with `offsets` (F + 1 entries from 0) a flat array of corners.
-Mesh mesh_from_arrays(py::handle vertices, py::handle faces, py::handle offsets) {
-  Mesh m;
+Mesh mesh_from_arrays(py::handle vertices, py::handle faces, py::handle offsets, std::string name) {
+  Mesh m{.name = std::move(name)};
   m.mesh.positions = read_vertices(vertices);
   PolygonMesh& mesh = m.mesh;
   if (!offsets.is_none()) {
@@ -387,7 +387,7 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
 
 // A textured mesh from the arrays duotone() returns.
 TexturedMesh textured_from(const py::handle vertices, const py::handle faces, const py::handle uv, const py::handle texture) {
-  TexturedMesh out{.mesh = mesh_from_arrays(vertices, faces, py::none()).mesh};
+  TexturedMesh out{.mesh = mesh_from_arrays(vertices, faces, py::none(), "duotone").mesh};
   const auto coordinates = py::array_t<float, py::array::forcecast | py::array::c_style>(as_array(uv, "uv"));
   if (coordinates.ndim() != 2 || coordinates.shape(1) != 2 || coordinates.shape(0) != out.mesh.num_corners())
     throw py::value_error("uv: expected one (u, v) per corner of the faces: (" + std::to_string(out.mesh.num_corners()) + ", 2)");
@@ -440,7 +440,15 @@ template <class Job> py::list parameter_list() {
   py::list out;
   const Job defaults;
   visit_parameters(defaults, [&](const Parameter& p, const auto& value) {
-    py::dict entry("name"_a = std::string(p.name), "help"_a = std::string(p.help), "default"_a = parameter_text(p, value));
+    using T = std::decay_t<decltype(value)>;
+    const char* type = std::is_same_v<T, bool>                    ? "boolean"
+                       : std::is_integral_v<T>                    ? "integer"
+                       : std::is_floating_point_v<T>              ? "number"
+                       : std::is_same_v<T, std::optional<double>> ? "number or name"
+                       : std::is_enum_v<T>                        ? "name"
+                                                                  : "colors";
+    py::dict entry("name"_a = std::string(p.name), "help"_a = std::string(p.help), "default"_a = parameter_text(p, value),
+                   "type"_a = type);
     if (std::isfinite(p.min)) entry["min"] = p.min;
     if (std::isfinite(p.max)) entry["max"] = p.max;
     if (!p.choices.empty()) entry["choices"] = std::vector<std::string>(p.choices.begin(), p.choices.end());
@@ -479,10 +487,10 @@ PYBIND11_MODULE(_meander, m) {
   });
 
   py::class_<Mesh>(m, "Mesh", "A polygon mesh: vertices (N, 3) float32, faces as offsets into a flat index array")
-      .def(py::init(&mesh_from_arrays), "vertices"_a, "faces"_a, py::kw_only(), "offsets"_a = py::none(),
+      .def(py::init(&mesh_from_arrays), "vertices"_a, "faces"_a, py::kw_only(), "offsets"_a = py::none(), "name"_a = "mesh",
            "A mesh from arrays: vertices (N, 3) of any float or integer dtype; faces an (F, k) integer array, a list of "
            "faces of any sizes, or a flat integer array of corners with offsets (F + 1 entries from 0). Arrays are "
-           "copied once into the mesh (float32 C-contiguous vertices without conversion).")
+           "copied once into the mesh (float32 C-contiguous vertices without conversion). `name` is what messages call it.")
       .def_property_readonly(
           "vertices",
           [](const py::object& self) {
@@ -505,7 +513,7 @@ PYBIND11_MODULE(_meander, m) {
       .def_property_readonly(
           "indices", [](const Mesh& mesh) { return owned<int32_t>(std::vector<int32_t>(mesh.mesh.face_vertices), {py::ssize_t(mesh.mesh.face_vertices.size())}); },
           "(C,) int32: every face's vertices, one face after another")
-      .def_property_readonly("name", [](const Mesh& mesh) { return mesh.name; }, "the file it was read from, or 'mesh'")
+      .def_property_readonly("name", [](const Mesh& mesh) { return mesh.name; }, "what messages call it: the file it was read from, or the name given")
       .def_property_readonly("num_vertices", [](const Mesh& mesh) { return mesh.mesh.num_vertices(); })
       .def_property_readonly("num_faces", [](const Mesh& mesh) { return mesh.mesh.num_faces(); })
       .def("__repr__", [](const Mesh& mesh) {
@@ -598,6 +606,7 @@ PYBIND11_MODULE(_meander, m) {
         throw py::value_error("job: unknown value '" + job + "' (expected curve, wire or duotone)");
       },
       "job"_a,
-      "The job's parameters as the CLI and the studio describe them: dicts of name, help, default (as text), min, max, "
+      "The job's parameters as the CLI and the studio describe them: dicts of name, help, default (as text), type "
+      "(boolean, integer, number, name, 'number or name' (a number, or its one choice for none), colors), min, max, "
       "choices, and whether it is a length");
 }

@@ -23,7 +23,7 @@ class Mesh:
     """A polygon mesh: vertices (N, 3) float32, faces as offsets into a flat index array."""
 
     def __init__(self, vertices: npt.ArrayLike, faces: npt.ArrayLike | Sequence[Sequence[int]], *,
-                 offsets: npt.ArrayLike | None = None) -> None: ...
+                 offsets: npt.ArrayLike | None = None, name: str = "mesh") -> None: ...
     @property
     def vertices(self) -> Float32Array:
         """(N, 3) float32, read-only, sharing the mesh's memory."""

@@ -1,0 +1,155 @@
+"""The Blender add-on, headless (ctest `blender`):
+blender -b --factory-startup --python-exit-code 1 --python tests/blender/run.py -- ZIP MESHES
+installs and enables the zip, runs each operator on a generated mesh and a real one,
+checks the objects made against the Python package, re-runs with new settings and checks
+that the objects were updated, and that a refusal is a report. Any failure exits 1."""
+
+import pathlib
+import sys
+import traceback
+
+import bmesh
+import bpy
+import numpy as np
+
+zip_path, meshes = sys.argv[sys.argv.index("--") + 1:][:2]
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+
+
+def install():
+    bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
+    bpy.ops.preferences.addon_enable(module="meander")
+    import meander  # the add-on, which is also the package
+    return meander
+
+
+def select(obj):
+    for other in bpy.context.view_layer.objects:
+        other.select_set(False)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+
+
+def world_mesh(meander, obj):
+    from meander import ui
+    return ui.source_mesh(bpy.context, obj)
+
+
+def check_curve(meander, source, result, **parameters):
+    """One closed poly spline per component, whose points are meander.curve's."""
+    check(result.type == "CURVE", f"{result.name}: not a curve object")
+    expected = meander.curve(world_mesh(meander, source), **parameters)
+    splines = result.data.splines
+    check(len(splines) == len(expected), f"{result.name}: {len(splines)} splines, expected {len(expected)}")
+    for spline, points in zip(splines, expected):
+        check(spline.type == "POLY" and spline.use_cyclic_u, f"{result.name}: a spline is not a closed poly line")
+        got = np.empty(len(spline.points) * 4, dtype=np.float32)
+        spline.points.foreach_get("co", got)
+        check(np.array_equal(got.reshape(-1, 4)[:, :3], points), f"{result.name}: the points differ from meander.curve's")
+    check(result.data.bevel_depth > 0, f"{result.name}: no bevel: it would not render as a tube")
+
+
+def check_closed_manifold(obj):
+    mesh = bmesh.new()
+    mesh.from_mesh(obj.data)
+    try:
+        check(len(mesh.faces) > 0, f"{obj.name}: no faces")
+        check(all(len(e.link_faces) == 2 for e in mesh.edges), f"{obj.name}: an edge is not shared by exactly two faces")
+        check(all(e.is_contiguous for e in mesh.edges), f"{obj.name}: faces wound against their neighbours")
+    finally:
+        mesh.free()
+
+
+def run(meander):
+    scene = bpy.context.scene
+    # A generated mesh: Blender's own torus (genus 1, quads), moved and scaled so that the
+    # world transform matters.
+    bpy.ops.mesh.primitive_torus_add(major_segments=24, minor_segments=12, location=(1, 2, 3))
+    torus = bpy.context.active_object
+    torus.scale = (2, 2, 2)
+    # A real one, through the package's reader.
+    spot = meander.read(pathlib.Path(meshes) / "spot_control_mesh.obj")
+    data = bpy.data.meshes.new("spot")
+    data.from_pydata(spot.vertices.tolist(), [], [spot.indices[a:b].tolist() for a, b in zip(spot.offsets[:-1], spot.offsets[1:])])
+    spot_object = bpy.data.objects.new("spot", data)
+    scene.collection.objects.link(spot_object)
+
+    for source in (torus, spot_object):
+        select(source)
+        objects = len(bpy.data.objects)
+        scene.meander_curve.seed = 3
+        check(bpy.ops.meander.curve() == {"FINISHED"}, "meander.curve did not finish")
+        curve = bpy.data.objects[source["meander_curve"]]
+        check_curve(meander, source, curve, seed=3)
+        # Re-run with another seed: the same object, updated.
+        select(source)
+        scene.meander_curve.seed = 4
+        bpy.ops.meander.curve()
+        check(bpy.data.objects[source["meander_curve"]] == curve, "re-running made another object")
+        check_curve(meander, source, curve, seed=4)
+        check(len(bpy.data.objects) == objects + 1, "re-running piled up objects")
+
+        select(source)
+        scene.meander_wire.sides = 8
+        check(bpy.ops.meander.wire() == {"FINISHED"}, "meander.wire did not finish")
+        wire = bpy.data.objects[source["meander_wire"]]
+        check(wire.type == "MESH", "the wire is not a mesh")
+        check_closed_manifold(wire)
+        faces = len(wire.data.polygons)
+        select(source)
+        scene.meander_wire.sides = 5
+        bpy.ops.meander.wire()
+        check(bpy.data.objects[source["meander_wire"]] == wire and len(wire.data.polygons) != faces,
+              "the wire was not updated with 5 sides")
+        check_closed_manifold(wire)
+
+        select(source)
+        scene.meander_duotone.texture_size = 256
+        check(bpy.ops.meander.duotone() == {"FINISHED"}, "meander.duotone did not finish")
+        duotone = bpy.data.objects[source["meander_duotone"]]
+        check(len(duotone.data.uv_layers) == 1, "the duotone has no UV layer")
+        material = duotone.data.materials[0]
+        image = next(n.image for n in material.node_tree.nodes if n.type == "TEX_IMAGE")
+        check(image.packed_file is not None, "the duotone's texture is not packed into the .blend")
+        check(tuple(image.size) == (256, 128) or image.size[0] == 256, f"texture size {tuple(image.size)}")
+        vertices, faces, uv, texture, _ = meander.duotone(world_mesh(meander, source), texture_size=256)
+        got = np.empty(len(duotone.data.loops) * 2, dtype=np.float32)
+        duotone.data.uv_layers[0].data.foreach_get("uv", got)
+        check(np.array_equal(got.reshape(-1, 2), uv), "the UVs are not meander.duotone's")
+        pixels = np.empty(image.size[0] * image.size[1] * 4, dtype=np.float32)
+        image.pixels.foreach_get(pixels)
+        check(np.abs(np.flipud(pixels.reshape(image.size[1], image.size[0], 4)) * 255 - texture).max() < 1,
+              "the image is not the duotone's texture, top row first")
+
+    # The scene's units: with 1 unit = 1 mm, a model size of 100 mm is 100 units wide.
+    select(torus)
+    scene.unit_settings.scale_length = 0.001
+    scene.meander_wire.use_model_size = True
+    scene.meander_wire.model_size = 100  # shown and stored in scene units: 100 mm
+    bpy.ops.meander.wire()
+    wire = bpy.data.objects[torus["meander_wire"]]
+    # The model (the torus) is 100 mm wide; its wire follows the smoothed curve, which
+    # cuts inside the outermost vertices, with a thin tube round it.
+    check(95 <= max(wire.dimensions) <= 105, f"a wire of a 100 mm model is {max(wire.dimensions):.1f} mm wide")
+
+    # A refusal is a report (an error from bpy.ops in the background), not a traceback.
+    select(spot_object)
+    scene.meander_curve.quad = "none"
+    try:
+        bpy.ops.meander.curve()
+        raise AssertionError("quad none on a mesh of pentagons was not refused")
+    except RuntimeError as error:
+        check(str(error).startswith("Error: spot: face 36 has 5 vertices: quad none needs a mesh of quads only"),
+              f"the refusal does not name the object and say why: {error}")
+
+
+try:
+    run(install())
+    print("blender test: all passed")
+except Exception:  # noqa: BLE001  any failure fails the test
+    traceback.print_exc()
+    sys.exit(1)
