@@ -1,6 +1,7 @@
-# The add-on's properties, operators and panel. Every job parameter becomes a Blender
-# property under its own name, made from the one description the CLI and the studio use
-# (meander.parameters), so the three never disagree.
+# The Blender add-on's properties, operators and panel (docs/blender.md), a module of the
+# package `meander` (which register() imports it from). Every job parameter becomes a
+# Blender property under its own name, made from the one description the CLI and the
+# studio use (meander.parameters), so they never disagree.
 
 import json
 import threading

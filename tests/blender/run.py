@@ -22,8 +22,13 @@ def check(condition, message):
 
 def install():
     bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
+    # The zip's copy, even where `make install-python` put another in site-packages (which
+    # Blender's Python would find first: the same package, maybe of another build).
+    addons = bpy.utils.user_resource("SCRIPTS", path="addons")
+    sys.path.insert(0, addons)
     bpy.ops.preferences.addon_enable(module="meander")
     import meander  # the add-on, which is also the package
+    check(pathlib.Path(meander.__file__).is_relative_to(addons), f"meander was imported from {meander.__file__}")
     return meander
 
 
