@@ -183,10 +183,11 @@ py::list curves_list(Polylines&& curves) {
   return out;
 }
 
+// Curves from a list of (N, 3) arrays, or one array.
 Polylines curves_from(py::handle value) {
   Polylines curves;
-  if (py::isinstance<py::array>(value)) value = py::make_tuple(value); // one curve
-  for (py::handle curve : value) {
+  const py::object list = py::isinstance<py::array>(value) ? py::make_tuple(value) : py::reinterpret_borrow<py::object>(value);
+  for (py::handle curve : list) {
     const std::vector<Vec3> points = read_vertices(curve);
     curves.points.insert(curves.points.end(), points.begin(), points.end());
     curves.start.push_back(int32_t(curves.points.size()));
@@ -208,8 +209,7 @@ template <class T> std::string value_text(const Parameter& p, py::handle value) 
       return joined;
     }
   }
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "True" : "False"; // refused: not a number or a name
-  return py::str(value);
+  return py::str(value); // True for a number is "True", which set_parameter refuses
 }
 
 // Sets the job's parameters from keyword arguments, as the CLI and the studio read them:
@@ -423,8 +423,8 @@ py::array_t<uint8_t> render_picture(py::handle meshes, py::handle curves, py::ha
                         .framing = fit ? Framing::silhouette : Framing::bounds};
   parse_size(size, options.width, options.height);
   Scene scene;
-  if (py::isinstance<Mesh>(meshes)) meshes = py::make_tuple(meshes);
-  for (py::handle m : meshes) scene.meshes.push_back({.mesh = m.cast<const Mesh&>().mesh});
+  const py::object list = py::isinstance<Mesh>(meshes) ? py::make_tuple(meshes) : py::reinterpret_borrow<py::object>(meshes);
+  for (py::handle m : list) scene.meshes.push_back({.mesh = m.cast<const Mesh&>().mesh});
   if (!curves.is_none()) scene.curves.push_back({.curves = curves_from(curves)});
   if (!occluder.is_none())
     scene.meshes.push_back({.mesh = occluder.cast<const Mesh&>().mesh,

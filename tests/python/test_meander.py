@@ -192,6 +192,10 @@ def test_render_draws_the_curve_over_its_surface(sphere, tmp_path):
     assert red.sum() > 500, "the curve is not drawn"
     meander.write_png(tmp_path / "curve.png", picture)
     assert (tmp_path / "curve.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # One mesh and one curve need no list; the shaded sphere covers a good part of the picture.
+    shaded = meander.render(meshes=sphere, curves=curves[0], size="80x60", samples=1)
+    drawn = (shaded[..., :3] < 240).any(axis=2)
+    assert drawn.sum() > 0.2 * 80 * 60
 
 
 @pytest.mark.parametrize("extension", ["obj", "ply", "stl", "off", "glb", "3mf"])
