@@ -2,7 +2,8 @@
 blender -b --factory-startup --python-exit-code 1 --python tests/blender/run.py -- ZIP MESHES
 installs and enables the zip, runs each operator on a generated mesh and a real one,
 checks the objects made against the Python package, re-runs with new settings and checks
-that the objects were updated, and that a refusal is a report. Any failure exits 1."""
+that the objects were updated, that a refusal is a report, and that undo and redo take a
+run back and make it again. Any failure exits 1."""
 
 import pathlib
 import sys
@@ -150,6 +151,18 @@ def run(meander):
     except RuntimeError as error:
         check(str(error).startswith("Error: spot: face 36 has 5 vertices: quad none needs a mesh of quads only"),
               f"the refusal does not name the object and say why: {error}")
+
+    # Undo takes a run back and redo makes it again (background mode starts without an
+    # undo system until the first push; operators called from Python push only when asked).
+    scene.meander_curve.quad = "dual-simplest"
+    bpy.ops.ed.undo_push(message="before")
+    bpy.ops.mesh.primitive_ico_sphere_add("EXEC_DEFAULT", True)
+    bpy.ops.meander.curve("EXEC_DEFAULT", True)
+    check("Icosphere curve" in bpy.data.objects, "no curve of the ico sphere")
+    bpy.ops.ed.undo()
+    check("Icosphere curve" not in bpy.data.objects and "Icosphere" in bpy.data.objects, "undo did not take the curve back")
+    bpy.ops.ed.redo()
+    check("Icosphere curve" in bpy.data.objects, "redo did not make the curve again")
 
 
 try:
