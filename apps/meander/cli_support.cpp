@@ -131,4 +131,15 @@ RepairResult read_and_repair(const std::filesystem::path& path, StageLog& log, c
   return repaired;
 }
 
+CurveResult make_input_curve(const std::string& input, StageLog& log, const CurveJob& job, bool strict) {
+  RepairResult repaired = read_and_repair(input, log, {.strict = strict, .max_faces = job.max_faces, .reorder = reorders(job)});
+  require_memory_for_spacing(input, repaired.mesh, job.model_size, job.spacing, job.quadrangulation);
+  StageTimes times;
+  CurveResult result =
+      about_input(input, [&] { return make_curve(std::move(repaired.mesh), std::move(repaired.connectivity), job, &times); });
+  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.restart();
+  return result;
+}
+
 } // namespace meander::cli

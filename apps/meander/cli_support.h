@@ -59,6 +59,12 @@ void require_memory(const std::string& input, double elements, double bytes_each
 class StageLog;
 RepairResult read_and_repair(const std::filesystem::path& path, StageLog& log, const RepairOptions& options);
 
+// The curve of the mesh read from `input`: read and repaired as read_and_repair does
+// (`strict` as RepairOptions::strict, the input's faces limited to job.max_faces), refused
+// before any work where its spacing would not fit in memory, then make_curve, each stage's
+// time in the log.
+CurveResult make_input_curve(const std::string& input, StageLog& log, const CurveJob& job, bool strict);
+
 // Runs work() on the mesh read from `input`. The library's topology refusals (a quad
 // mesh with boundary, a triangle under --quad none, ...) do not know the file; the
 // user should still read which one, as in the readers' messages.

@@ -36,13 +36,7 @@ void run_curve(const CurveArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces, .reorder = reorders(job)});
-  require_memory_for_spacing(a.input, input.mesh, job.model_size, job.spacing, job.quadrangulation);
-  StageTimes times;
-  const CurveResult result =
-      about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), job, &times); });
-  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
-  log.restart();
+  const CurveResult result = make_input_curve(a.input, log, job, a.strict);
   const int64_t points = result.points_written;
   if (!a.triangles.empty()) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});

@@ -63,14 +63,9 @@ void run_wire(const WireArgs& a) {
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
-  RepairResult input = read_and_repair(a.input, log, {.strict = a.strict, .max_faces = a.max_faces, .reorder = reorders(curve_job)});
-  require_memory_for_spacing(a.input, input.mesh, curve_job.model_size, curve_job.spacing, curve_job.quadrangulation);
-  StageTimes times;
-  const CurveResult curve =
-      about_input(a.input, [&] { return make_curve(std::move(input.mesh), std::move(input.connectivity), curve_job, &times); });
-  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  const CurveResult curve = make_input_curve(a.input, log, curve_job, a.strict);
   log.note(leaves_note(curve.cycle));
-  times.clear();
+  StageTimes times;
   if (const std::vector<std::string> notes = slab_mesh_notes(curve, job); !notes.empty()) {
     std::string said = notes[0];
     for (size_t k = 1; k < notes.size(); ++k) said += (k + 1 == notes.size() ? " and " : ", ") + notes[k];

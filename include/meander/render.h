@@ -109,6 +109,10 @@ struct RenderOptions {
   std::optional<CameraPose> camera; // set: used in place of view and framing
 };
 
+// The camera render() looks through for `scene` with `options` (their view and framing,
+// or their camera): what a drawing of the same scene is seen with (drawing.h).
+CameraPose picture_camera(const Scene& scene, const RenderOptions& options);
+
 // "front", "back", "left", "right", "top", "iso" or "AZ,EL" in degrees ("30,20").
 // Throws UsageError("view 'x': expected front, back, left, right, top, iso or AZ,EL in degrees").
 View parse_view(std::string_view text);

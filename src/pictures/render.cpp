@@ -193,6 +193,15 @@ Camera fit_camera(const Scene& scene, const RenderOptions& o) {
   return c;
 }
 
+} // namespace
+
+CameraPose picture_camera(const Scene& scene, const RenderOptions& options) {
+  const Camera c = fit_camera(scene, options);
+  return {.eye = c.eye, .target = c.eye + c.forward, .up = c.up, .fov_degrees = 2 * std::atan(c.tan_half_height) * 180 / pi};
+}
+
+namespace {
+
 double mesh_area(const PolygonMesh& m) {
   double area = 0;
   for (int32_t f = 0; f < m.num_faces(); ++f) {

@@ -1,0 +1,352 @@
+#include "meander/drawing.h"
+
+#include "embree/embree_scene.h"
+#include "meander/error.h"
+#include "meander/io.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+namespace meander {
+
+Paper parse_paper(std::string_view text, bool landscape) {
+  std::string name(text);
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  constexpr std::pair<std::string_view, std::array<double, 2>> named[] = {
+      {"a3", {297, 420}}, {"a4", {210, 297}}, {"a5", {148, 210}}, {"letter", {215.9, 279.4}}, {"legal", {215.9, 355.6}}};
+  Paper paper;
+  bool found = false;
+  for (const auto& [key, size] : named)
+    if (name == key) paper.width = size[0], paper.height = size[1], found = true;
+  if (!found) {
+    std::string_view rest = name;
+    if (rest.ends_with("mm")) rest.remove_suffix(2);
+    const size_t x = rest.find('x');
+    double w = 0, h = 0;
+    const auto number = [](std::string_view digits, double& value) {
+      const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      return error == std::errc() && end == digits.data() + digits.size() && std::isfinite(value) && value > 0;
+    };
+    if (x == std::string_view::npos || !number(rest.substr(0, x), w) || !number(rest.substr(x + 1), h))
+      throw UsageError("paper '" + std::string(text) +
+                       "': expected A3, A4, A5, letter, legal or WIDTHxHEIGHT in millimetres (300x200mm)");
+    paper.width = w, paper.height = h;
+  }
+  if (landscape != (paper.width > paper.height)) std::swap(paper.width, paper.height);
+  return paper;
+}
+
+namespace {
+
+// The occluding surface as Embree triangles (polygons fanned from their first corner).
+class Occluder {
+public:
+  // Robust: a ray through an edge or a vertex of the surface must not slip between its
+  // faces (the rays of a circle on a sphere meet its meridians' edges).
+  explicit Occluder(const PolygonMesh& mesh) : rtc_("draw", RTC_SCENE_FLAG_ROBUST, RTC_BUILD_QUALITY_MEDIUM) {
+    std::vector<uint32_t> triangles;
+    for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+      const auto face = mesh.face(f);
+      for (size_t i = 1; i + 1 < face.size(); ++i)
+        triangles.insert(triangles.end(), {uint32_t(face[0]), uint32_t(face[i]), uint32_t(face[i + 1])});
+    }
+    if (!triangles.empty()) {
+      RTCGeometry geometry = rtcNewGeometry(rtc_.device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+      set_vertices(geometry, mesh.positions);
+      auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                     3 * sizeof(uint32_t), triangles.size() / 3));
+      std::copy(triangles.begin(), triangles.end(), indices);
+      rtc_.attach(geometry);
+      empty_ = false;
+    }
+    rtc_.commit();
+  }
+
+  // Whether the surface crosses the line from `eye` to `p` more than `slack` before p.
+  bool hides(Vec3d eye, Vec3d p, double slack) const {
+    if (empty_) return false;
+    const Vec3d d = p - eye;
+    const double length = norm(d);
+    if (length <= slack) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = float(eye.x), ray.org_y = float(eye.y), ray.org_z = float(eye.z);
+    ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+    ray.tnear = 0;
+    ray.tfar = float(1 - slack / length);
+    ray.mask = 0xFFFFFFFF;
+    rtcOccluded1(rtc_.scene(), &context, &ray);
+    return ray.tfar < 0;
+  }
+
+private:
+  EmbreeScene rtc_;
+  bool empty_ = true;
+};
+
+// The mean length of the surface's edges (each counted once per face it bounds).
+double mean_edge(const PolygonMesh& m) {
+  double length = 0;
+  for (int32_t f = 0; f < m.num_faces(); ++f) {
+    const auto face = m.face(f);
+    for (size_t i = 0; i < face.size(); ++i)
+      length += norm(to_double(m.positions[size_t(face[(i + 1) % face.size()])]) - to_double(m.positions[size_t(face[i])]));
+  }
+  return m.num_corners() > 0 ? length / m.num_corners() : 0;
+}
+
+double distance(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// From p to the segment a-b.
+double to_segment(Point2 p, Point2 a, Point2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y, length2 = dx * dx + dy * dy;
+  const double t = length2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / length2, 0.0, 1.0) : 0.0;
+  return distance(p, {a.x + t * dx, a.y + t * dy});
+}
+
+// Douglas-Peucker: the points of `path` that keep it within `tolerance` (its ends kept;
+// a closed path is simplified as the open one back to its first point).
+std::vector<Point2> simplified(const std::vector<Point2>& path, bool closed, double tolerance) {
+  std::vector<Point2> line = path;
+  if (closed && !line.empty()) line.push_back(line.front());
+  const size_t n = line.size();
+  if (n < 3) return path;
+  std::vector<uint8_t> keep(n, 0);
+  keep[0] = keep[n - 1] = 1;
+  std::vector<std::pair<size_t, size_t>> stack{{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    double farthest = -1;
+    size_t at = a;
+    for (size_t i = a + 1; i < b; ++i)
+      if (const double d = to_segment(line[i], line[a], line[b]); d > farthest) farthest = d, at = i;
+    if (farthest > tolerance) {
+      keep[at] = 1;
+      stack.emplace_back(a, at);
+      stack.emplace_back(at, b);
+    }
+  }
+  std::vector<Point2> out;
+  for (size_t i = 0; i < n - (closed ? 1 : 0); ++i)
+    if (keep[i]) out.push_back(line[i]);
+  return out;
+}
+
+struct Path {
+  std::vector<Point2> points;
+  bool closed = false;
+  int32_t layer = 0;
+};
+
+// Each layer's paths, nearest first: from the pen's place, the path with the nearest
+// start (or, open, either end: it is then drawn backwards); O(P^2) over a layer's P paths,
+// which the few dozen cuts per curve keep small.
+std::vector<Path> ordered(std::vector<Path> paths, int32_t layers) {
+  std::vector<Path> out;
+  out.reserve(paths.size());
+  Point2 pen{0, 0};
+  for (int32_t layer = 0; layer < layers; ++layer) {
+    std::vector<size_t> left;
+    for (size_t i = 0; i < paths.size(); ++i)
+      if (paths[i].layer == layer) left.push_back(i);
+    while (!left.empty()) {
+      double best = INFINITY;
+      size_t pick = 0;
+      bool reversed = false;
+      for (size_t j = 0; j < left.size(); ++j) {
+        const Path& p = paths[left[j]];
+        if (const double d = distance(pen, p.points.front()); d < best) best = d, pick = j, reversed = false;
+        if (!p.closed)
+          if (const double d = distance(pen, p.points.back()); d < best) best = d, pick = j, reversed = true;
+      }
+      Path& p = paths[left[pick]];
+      if (reversed) std::reverse(p.points.begin(), p.points.end());
+      pen = p.closed ? p.points.front() : p.points.back();
+      out.push_back(std::move(p));
+      left.erase(left.begin() + std::ptrdiff_t(pick));
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const DrawingOptions& options) {
+  const Paper& paper = options.paper;
+  const double area_width = paper.width - 2 * paper.margin, area_height = paper.height - 2 * paper.margin;
+  if (!(paper.margin >= 0 && area_width > 0 && area_height > 0 && std::isfinite(area_width + area_height)))
+    throw UsageError("paper of " + std::to_string(paper.width) + " x " + std::to_string(paper.height) +
+                     " mm: no room inside margins of " + std::to_string(paper.margin) + " mm");
+  if (!(options.pen > 0 && std::isfinite(options.pen))) throw UsageError("pen: expected a positive width in millimetres");
+
+  // The pictures' camera for this scene, in the drawable area's proportions.
+  Scene scene;
+  scene.meshes.push_back({.mesh = occluder, .style = MeshStyle::hidden});
+  scene.curves.push_back({.curves = curves});
+  RenderOptions picture{.width = int32_t(std::clamp(std::lround(1000 * area_width / area_height), 1L, 16384L)),
+                        .height = 1000,
+                        .view = options.view,
+                        .framing = options.framing,
+                        .camera = options.camera};
+  const CameraPose pose = picture_camera(scene, picture);
+  scene = {};
+  const Vec3d eye = pose.eye;
+  const Vec3d forward = (pose.target - pose.eye) * (1 / norm(pose.target - pose.eye));
+  const Vec3d right = cross(forward, pose.up) * (1 / norm(cross(forward, pose.up)));
+  const Vec3d up = cross(right, forward);
+
+  // A point is hidden behind more than half the surface's mean edge: a curve on the
+  // surface strays from it by less (smoothed, it cuts inside across the faces).
+  const Occluder surface(occluder);
+  const double slack = 0.5 * mean_edge(occluder);
+  const auto seen = [&](Vec3d p) { return dot(p - eye, forward) > 0 && !surface.hides(eye, p, slack); };
+  std::vector<uint8_t> visible(curves.points.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, visible.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) visible[i] = seen(to_double(curves.points[i]));
+  });
+  // Where the curve goes from seen (a) to hidden (b): the last seen point of the segment,
+  // to 1/256 of it.
+  const auto edge = [&](Vec3d a, Vec3d b) {
+    for (int step = 0; step < 8; ++step) {
+      const Vec3d middle = (a + b) * 0.5;
+      (seen(middle) ? a : b) = middle;
+    }
+    return a;
+  };
+  const auto project = [&](Vec3d p) {
+    const Vec3d d = p - eye;
+    const double depth = dot(d, forward);
+    return Point2{dot(d, right) / depth, -dot(d, up) / depth};
+  };
+
+  std::vector<Path> paths;
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const int32_t first = curves.start[size_t(k)], n = curves.start[size_t(k) + 1] - first;
+    const bool closed = curves.closed(k);
+    const auto at = [&](int32_t i) { return to_double(curves.points[size_t(first + (i % n + n) % n)]); };
+    const auto shown = [&](int32_t i) { return visible[size_t(first + (i % n + n) % n)] != 0; };
+    if (n == 0) continue;
+    int32_t hidden_at = -1;
+    for (int32_t i = 0; i < n && hidden_at < 0; ++i)
+      if (!shown(i)) hidden_at = i;
+    if (hidden_at < 0) {
+      Path whole{.closed = closed, .layer = k};
+      for (int32_t i = 0; i < n; ++i) whole.points.push_back(project(at(i)));
+      paths.push_back(std::move(whole));
+      continue;
+    }
+    // Runs of seen points; on a closed curve from its first hidden point round, so that a
+    // run across the first point is one path.
+    const int32_t begin = closed ? hidden_at : 0, end = closed ? hidden_at + n : n;
+    Path run{.layer = k};
+    for (int32_t i = begin; i <= end; ++i) {
+      const bool inside = i < end && shown(i);
+      if (inside && run.points.empty() && (closed || i > 0)) run.points.push_back(project(edge(at(i), at(i - 1))));
+      if (inside) run.points.push_back(project(at(i)));
+      if (!inside && !run.points.empty()) {
+        if (i < end || closed) run.points.push_back(project(edge(at(i - 1), at(i))));
+        paths.push_back(std::move(run));
+        run = {.layer = k};
+      }
+    }
+  }
+
+  // Fitted to the drawable area, centred; then only the points the pen shows.
+  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+  for (const Path& p : paths)
+    for (const Point2& q : p.points)
+      lo_x = std::min(lo_x, q.x), hi_x = std::max(hi_x, q.x), lo_y = std::min(lo_y, q.y), hi_y = std::max(hi_y, q.y);
+  const double extent_x = hi_x - lo_x, extent_y = hi_y - lo_y;
+  const double scale = std::min(extent_x > 0 ? area_width / extent_x : INFINITY, extent_y > 0 ? area_height / extent_y : INFINITY);
+  const double fit = std::isfinite(scale) ? scale : 1;
+  const double offset_x = paper.margin + (area_width - extent_x * fit) / 2 - lo_x * fit;
+  const double offset_y = paper.margin + (area_height - extent_y * fit) / 2 - lo_y * fit;
+  tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) {
+    for (Point2& q : paths[i].points) q = {offset_x + q.x * fit, offset_y + q.y * fit};
+    paths[i].points = simplified(paths[i].points, paths[i].closed, options.pen / 20);
+  });
+  // A path shorter than the pen is wide would be a dot: a glimpse of the curve at a
+  // silhouette.
+  std::erase_if(paths, [&](const Path& p) {
+    double length = 0;
+    for (size_t i = 1; i < p.points.size(); ++i) length += distance(p.points[i - 1], p.points[i]);
+    return p.points.size() < 2 || length < options.pen;
+  });
+
+  Drawing drawing{.paper = paper, .layers = curves.size()};
+  Point2 pen{0, 0};
+  for (Path& p : ordered(std::move(paths), curves.size())) {
+    drawing.travel += distance(pen, p.points.front());
+    for (size_t i = 1; i < p.points.size(); ++i) drawing.drawn_length += distance(p.points[i - 1], p.points[i]);
+    if (p.closed) drawing.drawn_length += distance(p.points.back(), p.points.front());
+    pen = p.closed ? p.points.front() : p.points.back();
+    drawing.points.insert(drawing.points.end(), p.points.begin(), p.points.end());
+    drawing.start.push_back(int32_t(drawing.points.size()));
+    drawing.closed.push_back(p.closed);
+    drawing.layer.push_back(p.layer);
+  }
+  return drawing;
+}
+
+std::string drawing_svg(const Drawing& d, double pen) {
+  std::string out;
+  char number[64];
+  const auto put = [&](double value) {
+    std::snprintf(number, sizeof number, "%.3f", value);
+    std::string_view text = number;
+    // Trailing zeros say nothing: "12.500" is "12.5", "3.000" is "3".
+    while (text.find('.') != std::string_view::npos && (text.back() == '0' || text.back() == '.')) {
+      const bool dot = text.back() == '.';
+      text.remove_suffix(1);
+      if (dot) break;
+    }
+    out += text == "-0" ? "0" : text;
+  };
+  out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+         "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" width=\"";
+  put(d.paper.width);
+  out += "mm\" height=\"";
+  put(d.paper.height);
+  out += "mm\" viewBox=\"0 0 ";
+  put(d.paper.width);
+  out += ' ';
+  put(d.paper.height);
+  out += "\">\n";
+  for (int32_t k = 0, path = 0; k < d.layers; ++k) {
+    if (path == d.size() || d.layer[size_t(path)] != k) continue;
+    out += "<g inkscape:groupmode=\"layer\" inkscape:label=\"" + std::to_string(k + 1) + " curve " + std::to_string(k + 1) +
+           "\" id=\"layer" + std::to_string(k + 1) + "\" fill=\"none\" stroke=\"black\" stroke-width=\"";
+    put(pen);
+    out += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+    for (; path < d.size() && d.layer[size_t(path)] == k; ++path) {
+      out += "<path d=\"";
+      for (int32_t i = d.start[size_t(path)]; i < d.start[size_t(path) + 1]; ++i) {
+        out += i == d.start[size_t(path)] ? "M" : " L";
+        put(d.points[size_t(i)].x);
+        out += ' ';
+        put(d.points[size_t(i)].y);
+      }
+      out += d.closed[size_t(path)] ? " Z\"/>\n" : "\"/>\n";
+    }
+    out += "</g>\n";
+  }
+  out += "</svg>\n";
+  return out;
+}
+
+void write_drawing(const Drawing& drawing, double pen, const std::filesystem::path& path) {
+  write_bytes(path, drawing_svg(drawing, pen));
+}
+
+} // namespace meander

@@ -1,0 +1,196 @@
+// Plotter drawings (drawing.h, `meander draw`): hidden parts removed, the sheet's
+// layout, and the SVG read back by a parser of the test's own.
+#include "test_support.h"
+
+#include "meander/drawing.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/pipeline.h"
+#include "meander/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace meander {
+namespace {
+
+using test::output_dir;
+using test::read_file;
+using test::run_cli;
+
+// n points of a circle of radius r round the axis `axis` (0 x, 1 y, 2 z) at height h.
+Polylines circle(int axis, double r, double h, int n = 360) {
+  Polylines c;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n, a = r * std::cos(t), b = r * std::sin(t);
+    const std::array<double, 3> p = axis == 2 ? std::array{a, b, h} : axis == 1 ? std::array{a, h, b} : std::array{h, a, b};
+    c.points.push_back({float(p[0]), float(p[1]), float(p[2])});
+  }
+  c.start.push_back(n);
+  return c;
+}
+
+DrawingOptions front() { return {.view = {.azimuth = 0, .elevation = 0}}; }
+
+TEST(Drawing, ACircleOnTheFarSideOfASphereIsHiddenAndOneOnTheNearSideDrawnWhole) {
+  const PolygonMesh sphere = meander::sphere(8000);
+  // Seen from +z: circles of the unit sphere at z = 0.6 (near) and -0.6 (far).
+  const Drawing near = draw_curves(circle(2, 0.8, 0.6), sphere, front());
+  ASSERT_EQ(near.size(), 1);
+  EXPECT_TRUE(near.closed[0]);
+  const Drawing far = draw_curves(circle(2, 0.8, -0.6), sphere, front());
+  EXPECT_EQ(far.size(), 0);
+  EXPECT_EQ(far.drawn_length, 0);
+}
+
+TEST(Drawing, NothingBehindATorusFrontTubeIsDrawn) {
+  const PolygonMesh torus = meander::torus(8000); // round the z axis, tube radius 0.35
+  // Seen edge-on from +x, the far half of the ring lies behind the near tube: of the
+  // outer equator (radius 1.35), the arc where x < 0 is hidden, the one where x > 0 drawn.
+  const DrawingOptions side{.view = {.azimuth = 90, .elevation = 0}};
+  Polylines back, front_half;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = std::numbers::pi * (0.2 + 0.6 * i / 100); // 36 to 144 degrees from +y
+    back.points.push_back({float(-1.35 * std::sin(t)), float(1.35 * std::cos(t)), 0});
+    front_half.points.push_back({float(1.35 * std::sin(t)), float(1.35 * std::cos(t)), 0});
+  }
+  back.start.push_back(101), back.open = {1};
+  front_half.start.push_back(101), front_half.open = {1};
+  EXPECT_EQ(draw_curves(back, torus, side).size(), 0);
+  const Drawing drawn = draw_curves(front_half, torus, side);
+  ASSERT_EQ(drawn.size(), 1);
+  EXPECT_FALSE(drawn.closed[0]);
+}
+
+// The length drawn of a sphere's curve (seen from the front) at a number of samples per segment.
+double drawn_length(int samples) {
+  CurveJob job;
+  job.curve.samples = samples;
+  const CurveResult result = make_curve(meander::sphere(3000), job);
+  return draw_curves(result.curves, cycle_triangles(result.quads, result.cycle), front()).drawn_length;
+}
+
+TEST(Drawing, SamplingTheCurveAtHalfOrTwiceTheStepChangesTheDrawnLengthByUnderOnePercent) {
+  const double at_default = drawn_length(4);
+  EXPECT_NEAR(drawn_length(2), at_default, 0.01 * at_default);
+  EXPECT_NEAR(drawn_length(8), at_default, 0.01 * at_default);
+}
+
+TEST(Drawing, APaperNoLargerThanItsMarginsOrABadPenIsRefused) {
+  const Polylines c = circle(2, 1, 0);
+  DrawingOptions options = front();
+  options.paper = {.width = 20, .height = 300, .margin = 10};
+  EXPECT_THROW(draw_curves(c, {}, options), UsageError);
+  options.paper = {};
+  options.pen = 0;
+  EXPECT_THROW(draw_curves(c, {}, options), UsageError);
+  EXPECT_THROW(parse_paper("B7"), UsageError);
+  EXPECT_THROW(parse_paper("300x"), UsageError);
+  const Paper letter = parse_paper("Letter", true);
+  EXPECT_DOUBLE_EQ(letter.width, 279.4);
+  EXPECT_DOUBLE_EQ(letter.height, 215.9);
+  EXPECT_DOUBLE_EQ(parse_paper("300x200mm").width, 200); // portrait unless landscape
+}
+
+// The paths of an SVG as the test reads them: each <path d="M x y L x y ... [Z]"> inside
+// a layer <g inkscape:groupmode="layer">.
+struct SvgPath {
+  std::vector<std::array<double, 2>> points;
+  bool closed = false;
+  int layer = -1;
+};
+
+std::vector<SvgPath> read_svg_paths(const std::string& svg, int& layers) {
+  std::vector<SvgPath> paths;
+  layers = 0;
+  const std::regex element(R"(<g inkscape:groupmode="layer"|<path d="([^"]*)\"/>)");
+  const std::regex number(R"(-?[0-9]+(\.[0-9]+)?)");
+  for (auto e = std::sregex_iterator(svg.begin(), svg.end(), element); e != std::sregex_iterator(); ++e) {
+    if (!(*e)[1].matched) {
+      ++layers;
+      continue;
+    }
+    const std::string d = (*e)[1];
+    SvgPath path{.closed = d.ends_with(" Z"), .layer = layers - 1};
+    std::vector<double> values;
+    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n) values.push_back(std::stod(n->str()));
+    for (size_t i = 0; i + 1 < values.size(); i += 2) path.points.push_back({values[i], values[i + 1]});
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
+TEST(CliDraw, APlotterDrawingOfAMeshFitsItsSheetOneLayerPerComponent) {
+  const auto dir = output_dir();
+  const std::string mesh = (dir / "two.obj").string(), svg = (dir / "two.svg").string(), png = (dir / "two.png").string();
+  write_mesh(test::side_by_side(meander::sphere(800), meander::torus(800), {3, 0, 0}), mesh);
+  const auto r = run_cli({"draw", mesh, "-o", svg, "--paper", "A5", "--landscape", "--margin", "1cm", "--pen", "0.5",
+                          "--png", png, "--size", "160x120"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("on 210x148 mm"), std::string::npos) << r.err;
+  const std::string text = read_file(svg);
+  EXPECT_NE(text.find(R"(width="210mm" height="148mm" viewBox="0 0 210 148")"), std::string::npos);
+  EXPECT_NE(text.find(R"(stroke-width="0.5")"), std::string::npos);
+  int layers = 0;
+  const std::vector<SvgPath> paths = read_svg_paths(text, layers);
+  EXPECT_EQ(layers, 2);
+  ASSERT_FALSE(paths.empty());
+  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+  for (const SvgPath& p : paths) {
+    EXPECT_GE(p.points.size(), 2u);
+    for (size_t i = 0; i < p.points.size(); ++i) {
+      const auto [x, y] = p.points[i];
+      lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x), lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
+      if (i > 0) {
+        EXPECT_NE(p.points[i], p.points[i - 1]) << "a point repeated";
+      }
+    }
+  }
+  // Inside the margins, and fitted: touching them on one axis (to the 3 decimals written,
+  // and a twentieth of the pen, which an extreme point may be dropped by).
+  EXPECT_GE(lo_x, 10 - 1e-3);
+  EXPECT_LE(hi_x, 200 + 1e-3);
+  EXPECT_GE(lo_y, 10 - 1e-3);
+  EXPECT_LE(hi_y, 138 + 1e-3);
+  EXPECT_TRUE(std::abs(hi_x - lo_x - 190) < 0.03 || std::abs(hi_y - lo_y - 128) < 0.03) << hi_x - lo_x << " " << hi_y - lo_y;
+  EXPECT_EQ(read_file(png).substr(1, 3), "PNG");
+  // The same input and options, the same bytes.
+  const std::string again = (dir / "again.svg").string();
+  ASSERT_EQ(run_cli({"draw", mesh, "-o", again, "--paper", "A5", "--landscape", "--margin", "1cm", "--pen", "0.5"}).exit_code, 0);
+  EXPECT_EQ(read_file(again), text);
+}
+
+TEST(CliDraw, ACurveFileIsDrawnHiddenByItsOccluder) {
+  const auto dir = output_dir();
+  const std::string sphere = (dir / "sphere.obj").string(), far = (dir / "far.ply").string(), svg = (dir / "far.svg").string();
+  write_mesh(meander::sphere(4000), sphere);
+  write_polylines(circle(2, 0.79, -0.6), far);
+  auto r = run_cli({"draw", far, "-o", svg, "--view", "front"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(": 1 path "), std::string::npos) << r.err;
+  r = run_cli({"draw", far, "--occluder", sphere, "-o", svg, "--view", "front"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(": 0 paths "), std::string::npos) << r.err;
+}
+
+TEST(CliDraw, BadOptionsAreUsageErrorsThatLeaveNoFile) {
+  const auto dir = output_dir();
+  const std::string mesh = (dir / "s.obj").string(), svg = (dir / "s.svg").string();
+  write_mesh(meander::sphere(200), mesh);
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--paper", "50x50", "--margin", "25mm"}, {"--paper", "B7"}, {"--pen", "0"}, {"--margin", "3parsec"}, {"--occluder", mesh}}) {
+    std::vector<std::string> args{"draw", mesh, "-o", svg};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << extra[0] << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(svg)) << extra[0];
+  }
+}
+
+} // namespace
+} // namespace meander
