@@ -4,6 +4,7 @@
 // thread waits for it, passes its progress to the caller's callback and cancels it when
 // the callback raises or Python has a signal to deliver (Ctrl-C).
 #include "meander/check.h"
+#include "meander/drawing.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/jobs.h"
@@ -385,6 +386,55 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
                         curves_list(std::move(curves)));
 }
 
+// A length on the paper: millimetres, or text with its unit ("10mm", "0.5in"), as the CLI reads it.
+double paper_length(const char* name, py::handle value) {
+  const Parameter p{.name = name, .min = 0, .length = true};
+  double millimetres = 0;
+  set_parameter(p, py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string(py::str(value)), millimetres);
+  return millimetres;
+}
+
+// The drawing of a mesh's curve (made with the curve's parameters, hidden by its surface)
+// or of curves (hidden by `occluder`, if given): (paths, svg).
+py::tuple draw(py::handle what, py::handle occluder, const std::string& view, bool fit, const std::string& paper,
+               bool landscape, py::handle margin, py::handle pen, py::handle progress, const py::kwargs& params) {
+  DrawingOptions options{.view = parse_view(view), .framing = fit ? Framing::silhouette : Framing::bounds,
+                         .paper = parse_paper(paper, landscape)};
+  options.paper.margin = paper_length("margin", margin);
+  options.pen = paper_length("pen", pen);
+  Polylines curves;
+  PolygonMesh surface;
+  if (py::isinstance<Mesh>(what)) {
+    if (!occluder.is_none()) throw py::value_error("occluder: a mesh hides its own curve (give curves to draw with an occluder)");
+    const Mesh& mesh = what.cast<const Mesh&>();
+    CurveJob job;
+    set_parameters(job, params, "draw");
+    check_parameters(job);
+    PolygonMesh input = mesh.mesh;
+    Scene scene = run_job(progress, [&](Progress& p) {
+      RepairResult r = repair(std::move(input), mesh.name, {.reorder = job.quadrangulation != Quadrangulation::none});
+      return curve_scene(about_mesh(mesh, [&] { return make_curve(std::move(r.mesh), std::move(r.connectivity), job, nullptr, &p); }));
+    });
+    curves = std::move(scene.curves.at(0).curves);
+    surface = std::move(scene.meshes.at(0).mesh);
+  } else {
+    if (py::len(params) > 0) throw py::type_error("draw(): the curve's parameters need a mesh, not curves");
+    curves = curves_from(what);
+    if (!occluder.is_none()) surface = occluder.cast<const Mesh&>().mesh;
+  }
+  Drawing drawing = run_job(py::none(), [&](Progress&) { return draw_curves(curves, surface, options); });
+  py::list paths;
+  for (int32_t k = 0; k < drawing.size(); ++k) {
+    std::vector<double> xy;
+    for (int32_t i = drawing.start[size_t(k)]; i < drawing.start[size_t(k) + 1]; ++i)
+      xy.insert(xy.end(), {drawing.points[size_t(i)].x, drawing.points[size_t(i)].y});
+    if (drawing.closed[size_t(k)]) xy.insert(xy.end(), {xy[0], xy[1]});
+    const py::ssize_t n = py::ssize_t(xy.size() / 2);
+    paths.append(owned<double>(std::move(xy), {n, 2}));
+  }
+  return py::make_tuple(paths, drawing_svg(drawing, options.pen));
+}
+
 // A textured mesh from the arrays duotone() returns.
 TexturedMesh textured_from(const py::handle vertices, const py::handle faces, const py::handle uv, const py::handle texture) {
   TexturedMesh out{.mesh = mesh_from_arrays(vertices, faces, py::none(), "duotone").mesh};
@@ -557,6 +607,13 @@ PYBIND11_MODULE(_meander, m) {
         "uv (4F, 2) float32 per corner, texture (H, W, 4) uint8, separating curves).\n\n"
         "Parameters are the CLI's (`meander duotone --help`, meander.parameters('duotone')): quad, rule, tree, seed, colors, "
         "tiles, texture_size, subdivide, model_size, spacing.");
+  m.def("draw", &draw, "what"_a, py::kw_only(), "occluder"_a = py::none(), "view"_a = "iso", "fit"_a = false,
+        "paper"_a = "A4", "landscape"_a = false, "margin"_a = 10.0, "pen"_a = 0.3, "progress"_a = py::none(),
+        "A pen plotter's drawing, as `meander draw`: (paths, svg). `what` is a Mesh, whose curve is made with the curve's "
+        "parameters and hidden by its surface, or curves (a list of (N, 3) arrays), hidden by `occluder` if given. "
+        "paths: (N, 2) float64 arrays in millimetres from the sheet's top-left corner (y down) in drawing order, a closed "
+        "one ending on its first point; svg: the SVG text. paper: A3, A4, A5, letter, legal or WIDTHxHEIGHT (mm); margin "
+        "and pen in millimetres, or text with a unit.");
   m.def("render", &render_picture, py::kw_only(), "meshes"_a = py::tuple(), "curves"_a = py::none(), "occluder"_a = py::none(),
         "size"_a = "1600x1200", "view"_a = "iso", "background"_a = "white", "samples"_a = 4, "curve_width"_a = 0.0,
         "curve_style"_a = "tube", "occluder_style"_a = "hidden", "fit"_a = false,

@@ -71,6 +71,11 @@ def duotone(mesh: Mesh, *, strict: bool = False, max_faces: int = 0, progress: P
             tiles: Literal["truchet", "outline", "triangles", "stripes", "dots"] = "truchet", texture_size: int = 1024,
             subdivide: int = 0) -> tuple[Float32Array, Int32Array, Float32Array, npt.NDArray[np.uint8], Curves]: ...
 
+def draw(what: Mesh | Curves | Float32Array, *, occluder: Mesh | None = None, view: str = "iso", fit: bool = False,
+         paper: str = "A4", landscape: bool = False, margin: float | str = 10.0, pen: float | str = 0.3,
+         progress: Progress | None = None, **curve_parameters: Any) -> tuple[list[npt.NDArray[np.float64]], str]:
+    """A pen plotter's drawing, as `meander draw`: (paths in millimetres, the SVG text)."""
+
 def render(*, meshes: Mesh | Sequence[Mesh] = (), curves: Curves | Float32Array | None = None,
            occluder: Mesh | None = None, size: str = "1600x1200", view: str = "iso", background: str = "white",
            samples: int = 4, curve_width: float = 0.0, curve_style: Literal["tube", "ribbon"] = "tube",

@@ -77,8 +77,11 @@ def check_certificate(mesh: meander.Mesh, curves, triangles: meander.Mesh, cycle
 
 def check_closed_manifold(faces: np.ndarray):
     """Every edge in exactly two faces, once in each direction (closed, 2-manifold, oriented)."""
-    directed = np.concatenate([np.stack([faces[:, k], np.roll(faces, -1, axis=1)[:, k]], axis=1) for k in range(faces.shape[1])])
-    unique, counts = np.unique(directed, axis=0, return_counts=True)
-    assert (counts == 1).all(), "a directed edge appears twice: faces misoriented or non-manifold"
-    reverse = {tuple(e) for e in unique.tolist()}
-    assert all((b, a) in reverse for a, b in unique.tolist()), "an edge has one face: the mesh is open"
+    start = faces.astype(np.int64).ravel()
+    end = np.roll(faces, -1, axis=1).astype(np.int64).ravel()
+    n = int(faces.max()) + 1
+    keys = np.sort(start * n + end)
+    assert (np.diff(keys) > 0).all(), "a directed edge appears twice: faces misoriented or non-manifold"
+    reverse = end * n + start
+    assert (keys[np.minimum(np.searchsorted(keys, reverse), len(keys) - 1)] == reverse).all(), \
+        "an edge has one face: the mesh is open"

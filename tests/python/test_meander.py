@@ -318,3 +318,29 @@ def test_the_documented_example_runs_and_prints_what_the_docs_say(tmp_path):
     run = subprocess.run([sys.executable, str(example)], cwd=tmp_path, check=True, capture_output=True, text=True)
     assert run.stdout.split("\n")[:3] == ["1 (76800, 3) float32", "True 1.15", "96"]
     assert (tmp_path / "pretzel_curve.png").exists() and (tmp_path / "pretzel_wire.stl").exists()
+
+
+def test_draw_makes_the_command_lines_drawing(sphere, cli, tmp_path):
+    path, svg_path = tmp_path / "sphere.obj", tmp_path / "drawing.svg"
+    meander.write_mesh(path, sphere)
+    subprocess.run([cli, "draw", str(path), "-o", str(svg_path), "--paper", "A5", "--seed", "2", "--pen", "0.5mm"],
+                   check=True, capture_output=True)
+    paths, svg = meander.draw(meander.read(path), paper="A5", seed=2, pen="0.5mm")
+    assert svg == svg_path.read_text()
+    assert len(paths) == svg.count("<path") > 0
+    points = np.concatenate(paths)
+    assert points.dtype == np.float64 and points.shape[1] == 2
+    assert points.min(axis=0).tolist() >= [10 - 1e-9, 10 - 1e-9] and (points.max(axis=0) <= [138 + 1e-9, 200 + 1e-9]).all()
+
+
+def test_curves_behind_their_occluder_are_not_drawn(sphere):
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    far = np.stack([0.8 * np.cos(t), 0.8 * np.sin(t), np.full_like(t, -0.6)], axis=1)
+    paths, _ = meander.draw([far], occluder=meander.generate("sphere", 8000), view="front")
+    assert paths == []
+    paths, _ = meander.draw(far, view="front")
+    assert len(paths) == 1 and np.array_equal(paths[0][0], paths[0][-1])  # closed: back to its first point
+    with pytest.raises(ValueError, match="paper 'B7'"):
+        meander.draw(far, paper="B7")
+    with pytest.raises(TypeError, match="need a mesh"):
+        meander.draw(far, seed=3)
