@@ -189,6 +189,22 @@ else
   echo "node or Chromium not installed: not measured (make test installs both)"
 fi
 
+# Plotter drawings (docs/drawing.md, Speed): hiding the parts behind the surface of a
+# 1M-segment curve (a sphere of 84,000 faces, 4 samples a segment), the stage "draw" of
+# `meander draw -v`, median of $cli_runs.
+echo
+echo "## Drawing: \`meander draw sphere_84k.ply -o drawing.svg\` (stage \"draw\", median of $cli_runs)"
+echo
+generate sphere --faces 84000 -o "$scratch/sphere_84k.ply" > /dev/null
+for ((i = 0; i < cli_runs; ++i)); do
+  "$meander" draw "$scratch/sphere_84k.ply" -o "$scratch/drawing.svg" -v 2>&1 | sed -n 's/^  draw *\([0-9.]*\) ms$/\1/p'
+done > "$scratch/draw_ms"
+draw_seconds=$(median < "$scratch/draw_ms" | awk '{ print $1 / 1000 }')
+echo "| target | measured | met |"
+echo "|---|---:|---|"
+printf '| hidden-line drawing of a 1M-segment curve <= 2 s | %.2f s | %s |\n' "$draw_seconds" "$(verdict "$draw_seconds" 2)"
+rm -f "$scratch/drawing.svg" "$scratch/draw_ms"
+
 # The Python package's overhead over the C++ call (docs/python.md): the same curve, median
 # of $runs each, in the same run.
 echo
