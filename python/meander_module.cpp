@@ -396,10 +396,16 @@ double paper_length(const char* name, py::handle value) {
 
 // The drawing of a mesh's curve (made with the curve's parameters, hidden by its surface)
 // or of curves (hidden by `occluder`, if given): (paths, svg).
-py::tuple draw(py::handle what, py::handle occluder, const std::string& view, bool fit, const std::string& paper,
-               bool landscape, py::handle margin, py::handle pen, py::handle progress, const py::kwargs& params) {
+py::tuple draw(py::handle what, py::handle occluder, const std::string& view, bool fit, py::handle camera,
+               const std::string& paper, bool landscape, py::handle margin, py::handle pen, py::handle progress,
+               const py::kwargs& params) {
   DrawingOptions options{.view = parse_view(view), .framing = fit ? Framing::silhouette : Framing::bounds,
                          .paper = parse_paper(paper, landscape)};
+  if (!camera.is_none()) {
+    const auto [eye, target, up, fov] = camera.cast<std::tuple<std::array<double, 3>, std::array<double, 3>, std::array<double, 3>, double>>();
+    options.camera = CameraPose{.eye = {eye[0], eye[1], eye[2]}, .target = {target[0], target[1], target[2]},
+                                .up = {up[0], up[1], up[2]}, .fov_degrees = fov};
+  }
   options.paper.margin = paper_length("margin", margin);
   options.pen = paper_length("pen", pen);
   Polylines curves;
@@ -608,12 +614,13 @@ PYBIND11_MODULE(_meander, m) {
         "Parameters are the CLI's (`meander duotone --help`, meander.parameters('duotone')): quad, rule, tree, seed, colors, "
         "tiles, texture_size, subdivide, model_size, spacing.");
   m.def("draw", &draw, "what"_a, py::kw_only(), "occluder"_a = py::none(), "view"_a = "iso", "fit"_a = false,
-        "paper"_a = "A4", "landscape"_a = false, "margin"_a = 10.0, "pen"_a = 0.3, "progress"_a = py::none(),
+        "camera"_a = py::none(), "paper"_a = "A4", "landscape"_a = false, "margin"_a = 10.0, "pen"_a = 0.3, "progress"_a = py::none(),
         "A pen plotter's drawing, as `meander draw`: (paths, svg). `what` is a Mesh, whose curve is made with the curve's "
         "parameters and hidden by its surface, or curves (a list of (N, 3) arrays), hidden by `occluder` if given. "
         "paths: (N, 2) float64 arrays in millimetres from the sheet's top-left corner (y down) in drawing order, a closed "
-        "one ending on its first point; svg: the SVG text. paper: A3, A4, A5, letter, legal or WIDTHxHEIGHT (mm); margin "
-        "and pen in millimetres, or text with a unit.");
+        "one ending on its first point; svg: the SVG text. camera: (eye, target, up, vertical field of view in degrees) in "
+        "place of view and fit. paper: A3, A4, A5, letter, legal or WIDTHxHEIGHT (mm); margin and pen in millimetres, or "
+        "text with a unit.");
   m.def("render", &render_picture, py::kw_only(), "meshes"_a = py::tuple(), "curves"_a = py::none(), "occluder"_a = py::none(),
         "size"_a = "1600x1200", "view"_a = "iso", "background"_a = "white", "samples"_a = 4, "curve_width"_a = 0.0,
         "curve_style"_a = "tube", "occluder_style"_a = "hidden", "fit"_a = false,

@@ -4,6 +4,8 @@
 # studio use (meander.parameters), so they never disagree.
 
 import json
+import math
+import os
 import threading
 import warnings
 
@@ -67,12 +69,13 @@ def _settings_class(job):
     return type(f"MEANDER_PG_{job}", (bpy.types.PropertyGroup,), {"__annotations__": annotations})
 
 
-def job_arguments(context, job):
+def job_arguments(context, job, sized=True):
     """The job's keyword arguments from the scene's settings, lengths in the job's units:
-    the scene's, or millimetres with a model size."""
+    the scene's, or millimetres with a model size (unless `sized` is False: then without
+    one, as a drawing from the scene's own view needs)."""
     settings = getattr(context.scene, f"meander_{job}")
     described = _meander.parameters(job)
-    sized = getattr(settings, "use_model_size", False)
+    sized = sized and getattr(settings, "use_model_size", False)
     millimetres = _metres(context) * 1000
 
     def length(value, name):
@@ -82,7 +85,7 @@ def job_arguments(context, job):
     for p in described:
         name, kind = p["name"], p["type"]
         if kind == "number or name":
-            value = getattr(settings, name) if getattr(settings, f"use_{name}") else None
+            value = getattr(settings, name) if getattr(settings, f"use_{name}") and (sized or name != "model_size") else None
             arguments[name] = length(value, name) if value is not None and p["length"] else value
         elif kind == "colors":
             arguments[name] = ["#" + "".join(f"{round(c * 255):02x}" for c in getattr(settings, f"{name}_{k}"))
@@ -317,6 +320,77 @@ class _Make:
         return self._finish(context)
 
 
+def view_camera(context):
+    """(eye, target, up, vertical field of view in degrees) of the 3D view the operator
+    runs in, or else of the scene's camera. An orthographic view is seen from far away
+    through a narrow field, which draws it nearly parallel."""
+    space = context.space_data
+    if space is not None and space.type == "VIEW_3D":
+        view = space.region_3d
+        rotation = view.view_matrix.inverted().to_3x3()
+        forward, up = -rotation.col[2].normalized(), rotation.col[1].normalized()
+        tan_half = 1 / view.window_matrix[1][1]
+        if view.is_perspective:
+            eye = view.view_matrix.inverted().translation
+            return tuple(eye), tuple(eye + forward), tuple(up), math.degrees(2 * math.atan(tan_half))
+        far = 1000 * max(view.view_distance, 1e-3)
+        target = view.view_location
+        return tuple(target - forward * far), tuple(target), tuple(up), math.degrees(2 * math.atan(tan_half / far))
+    camera = context.scene.camera
+    if camera is None:
+        raise ValueError("no 3D view and no scene camera to draw from")
+    rotation = camera.matrix_world.to_3x3()
+    eye = camera.matrix_world.translation
+    forward = -rotation.col[2].normalized()
+    return tuple(eye), tuple(eye + forward), tuple(rotation.col[1].normalized()), math.degrees(camera.data.angle_y)
+
+
+class MEANDER_OT_export_svg(bpy.types.Operator):
+    """Draw the active object's curve for a pen plotter, as seen from the 3D view (or the scene's camera): an SVG with
+    the parts behind the surface removed (meander draw)"""
+
+    bl_idname = "meander.export_svg"
+    bl_label = "Export plotter SVG"
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")
+    filter_glob: bpy.props.StringProperty(default="*.svg", options={"HIDDEN"})
+    paper: bpy.props.EnumProperty(name="Paper", items=[(p, p.capitalize() if p.islower() else p, "")
+                                                       for p in ("A4", "A3", "A5", "letter", "legal")])
+    landscape: bpy.props.BoolProperty(name="Landscape")
+    margin: bpy.props.FloatProperty(name="Margin (mm)", default=10, min=0)
+    pen: bpy.props.FloatProperty(name="Pen (mm)", description="the pen's width: the stroke, and the detail kept",
+                                 default=0.3, min=0.01)
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and context.active_object.type == "MESH"
+
+    def invoke(self, context, event):
+        if not self.filepath:
+            self.filepath = bpy.path.ensure_ext(context.active_object.name, ".svg")
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        source = context.active_object
+        path = bpy.path.ensure_ext(bpy.path.abspath(self.filepath), ".svg")
+        try:
+            camera = view_camera(context)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", _meander.MeshWarning)  # the curve's own operator says them
+                paths, svg = _meander.draw(source_mesh(context, source), camera=camera, paper=self.paper,
+                                           landscape=self.landscape, margin=self.margin, pen=self.pen,
+                                           **job_arguments(context, "curve", sized=False))
+            # Atomic, as the library's writers: a failed export leaves no partial file.
+            with open(path + ".part", "w", encoding="utf-8") as out:
+                out.write(svg)
+            os.replace(path + ".part", path)
+        except (ValueError, TypeError, OSError, RuntimeError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"Meander: {path}: {len(paths)} paths")
+        return {"FINISHED"}
+
+
 def _operator(job):
     return type(f"MEANDER_OT_{job}", (_Make, bpy.types.Operator), {
         "bl_idname": f"meander.{job}",
@@ -358,6 +432,8 @@ class MEANDER_PT_panel(bpy.types.Panel):
             else:
                 layout.prop(settings, name)
         layout.operator(f"meander.{job}", icon="CURVE_DATA" if job == "curve" else "MESH_DATA")
+        if job == "curve":
+            layout.operator("meander.export_svg", icon="EXPORT")
 
 
 _classes = []
@@ -368,6 +444,7 @@ def register():
     for job in JOBS:
         _classes.append(_settings_class(job))
     _classes.extend(_operator(job) for job in JOBS)
+    _classes.append(MEANDER_OT_export_svg)
     _classes.append(MEANDER_PT_panel)
     for cls in _classes:
         bpy.utils.register_class(cls)

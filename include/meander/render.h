@@ -110,7 +110,8 @@ struct RenderOptions {
 };
 
 // The camera render() looks through for `scene` with `options` (their view and framing,
-// or their camera): what a drawing of the same scene is seen with (drawing.h).
+// or their camera): what a drawing of the same scene is seen with (drawing.h). Throws
+// UsageError for a camera no picture can be taken with, as render() does.
 CameraPose picture_camera(const Scene& scene, const RenderOptions& options);
 
 // "front", "back", "left", "right", "top", "iso" or "AZ,EL" in degrees ("30,20").

@@ -72,7 +72,7 @@ def duotone(mesh: Mesh, *, strict: bool = False, max_faces: int = 0, progress: P
             subdivide: int = 0) -> tuple[Float32Array, Int32Array, Float32Array, npt.NDArray[np.uint8], Curves]: ...
 
 def draw(what: Mesh | Curves | Float32Array, *, occluder: Mesh | None = None, view: str = "iso", fit: bool = False,
-         paper: str = "A4", landscape: bool = False, margin: float | str = 10.0, pen: float | str = 0.3,
+         camera: tuple[Sequence[float], Sequence[float], Sequence[float], float] | None = None, paper: str = "A4", landscape: bool = False, margin: float | str = 10.0, pen: float | str = 0.3,
          progress: Progress | None = None, **curve_parameters: Any) -> tuple[list[npt.NDArray[np.float64]], str]:
     """A pen plotter's drawing, as `meander draw`: (paths in millimetres, the SVG text)."""
 

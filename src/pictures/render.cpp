@@ -83,7 +83,16 @@ struct Camera {
   double tan_half_height = 0, aspect = 1;
 };
 
+// Throws UsageError for a camera given that no picture can be taken with.
 Camera fit_camera(const Scene& scene, const RenderOptions& o) {
+  if (const std::optional<CameraPose>& given = o.camera) {
+    const Vec3d forward = given->target - given->eye;
+    const bool finite = std::isfinite(norm(given->eye) + norm(given->target) + norm(given->up) + given->fov_degrees);
+    if (!finite || norm(forward) == 0 || norm(cross(forward, given->up)) == 0 ||
+        !(given->fov_degrees > 0 && given->fov_degrees < 180))
+      throw UsageError("camera: expected finite positions, the eye apart from the target, an up direction not along the "
+                       "view, and a field of view between 0 and 180 degrees");
+  }
   if (o.camera) {
     Camera c;
     c.eye = o.camera->eye;
@@ -437,14 +446,6 @@ Image render(const Scene& scene, const RenderOptions& o) {
                      ": width and height must be 1.." + std::to_string(max_side) + " pixels");
   if (o.samples < 1 || o.samples > 1024)
     throw UsageError("samples " + std::to_string(o.samples) + ": expected 1..1024 rays per pixel");
-  if (const std::optional<CameraPose>& c = o.camera) {
-    const Vec3d forward = c->target - c->eye;
-    const bool finite = std::isfinite(norm(c->eye) + norm(c->target) + norm(c->up) + c->fov_degrees);
-    if (!finite || norm(forward) == 0 || norm(cross(forward, c->up)) == 0 || !(c->fov_degrees > 0 && c->fov_degrees < 180))
-      throw UsageError("camera: expected finite positions, the eye apart from the target, an up direction not along the "
-                       "view, and a field of view between 0 and 180 degrees");
-  }
-
   const Camera camera = fit_camera(scene, o);
   Box3 box;
   for (const SceneMesh& m : scene.meshes)
