@@ -221,29 +221,31 @@ template <class Job> void set_parameters(Job& job, const py::kwargs& values, con
   for (auto [key, value] : values) given.emplace_back(py::str(key), value);
   // The model size first: the other lengths' units need it.
   std::stable_partition(given.begin(), given.end(), [](const auto& entry) { return entry.first == parameters::model_size.name; });
+  const std::optional<double>& model_size = [&]() -> const std::optional<double>& {
+    if constexpr (std::is_same_v<Job, WireJob>) return job.curve.model_size;
+    else return job.model_size;
+  }();
   for (const auto& [key, value] : given) {
     bool known = false;
     visit_parameters(job, [&](const Parameter& p, auto& field) {
       if (p.name != key) return;
       known = true;
       const std::string text = value_text<std::decay_t<decltype(field)>>(p, value);
-      if constexpr (std::is_same_v<Job, DuotoneJob>) check_unit(p, text, job.model_size.has_value(), parameters::model_size.name);
-      else if constexpr (std::is_same_v<Job, WireJob>) check_unit(p, text, job.curve.model_size.has_value(), parameters::model_size.name);
-      else check_unit(p, text, job.model_size.has_value(), parameters::model_size.name);
+      check_unit(p, text, model_size.has_value(), parameters::model_size.name);
       set_parameter(p, text, field);
     });
     if (!known) throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + key + "'");
   }
 }
 
-// Runs work(progress) on a thread of its own while this one, without the GIL but for
-// each look, tells `callback` (stage, fraction or None) what the job is doing, and cancels
-// it when the callback raises or a signal is due (KeyboardInterrupt); that exception is
-// raised once the job stopped. The job's own exceptions are raised as they are.
 // For the tests (meander._hold_next_job): the next job waits at its first check until
 // cancelled, so that a test sees it in flight without making it slow.
 std::atomic<bool> hold_next_job{false};
 
+// Runs work(progress) on a thread of its own while this one, without the GIL but for
+// each look, tells `callback` (stage, fraction or None) what the job is doing, and cancels
+// it when the callback raises or a signal is due (KeyboardInterrupt); that exception is
+// raised once the job stopped. The job's own exceptions are raised as they are.
 template <class Work> auto run_job(py::handle callback, Work&& work) {
   using Result = decltype(work(std::declval<Progress&>()));
   Progress progress;
@@ -302,7 +304,7 @@ void warn_all(const std::string& name, const std::string& kind, const std::vecto
     if (PyErr_WarnEx(mesh_warning.ptr(), (name + ": " + kind + ": " + line).c_str(), 1) != 0) throw py::error_already_set();
 }
 
-// The repaired mesh (warning of each repair), its topology refusals naming the mesh.
+// work(), its topology refusals naming the mesh, as the CLI's name the file.
 template <class F> auto about_mesh(const Mesh& mesh, F&& work) -> decltype(work()) {
   try {
     return work();
@@ -387,12 +389,7 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
 }
 
 // A length on the paper: millimetres, or text with its unit ("10mm", "0.5in"), as the CLI reads it.
-double paper_length(const char* name, py::handle value) {
-  const Parameter p{.name = name, .min = 0, .length = true};
-  double millimetres = 0;
-  set_parameter(p, py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string(py::str(value)), millimetres);
-  return millimetres;
-}
+double paper_length(const char* name, py::handle value) { return millimetres(name, std::string(py::str(value))); }
 
 // The drawing of a mesh's curve (made with the curve's parameters, hidden by its surface)
 // or of curves (hidden by `occluder`, if given): (paths, svg).

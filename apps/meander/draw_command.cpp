@@ -25,14 +25,6 @@ struct DrawArgs {
   bool strict = false, verbose = false;
 };
 
-// A length on the paper: millimetres, or a number with its unit (10mm, 1cm, 0.5in).
-double paper_length(std::string_view name, std::string_view text) {
-  const Parameter p{.name = name, .min = 0, .length = true};
-  double millimetres = 0;
-  set_parameter(p, text, millimetres);
-  return millimetres;
-}
-
 void run_draw(const DrawArgs& a) {
   CurveJob job = a.job;
   job.max_faces = a.max_faces;
@@ -41,8 +33,8 @@ void run_draw(const DrawArgs& a) {
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
   const RenderOptions picture = picture_options(a.picture);
   DrawingOptions options{.view = picture.view, .framing = picture.framing, .paper = parse_paper(a.paper, a.landscape)};
-  options.paper.margin = paper_length("margin", a.margin);
-  options.pen = paper_length("pen", a.pen);
+  options.paper.margin = millimetres("margin", a.margin);
+  options.pen = millimetres("pen", a.pen);
 
   StageLog log(a.verbose);
   // A mesh gets its curve made; a curve file is drawn as it is, hidden by --occluder.

@@ -54,11 +54,11 @@ def _property(p):
                 name: bpy.props.FloatProperty(default=FIRST_VALUES.get(name, 1.0), min=bounds.get("min", 0.0),
                                               **({"max": bounds["max"]} if "max" in bounds else {}), **length, **options)}
     if kind == "colors":
-        first, second = text.split(",")
-        colour = lambda hex_text: tuple(int(hex_text[k:k + 2], 16) / 255 for k in (1, 3, 5))  # noqa: E731
-        return {f"{name}_{k}": bpy.props.FloatVectorProperty(default=colour(c), subtype="COLOR_GAMMA", min=0, max=1,
+        # "#rrggbb,#rrggbb": two colours of three components in 0..1.
+        colours = [tuple(int(c[k:k + 2], 16) / 255 for k in (1, 3, 5)) for c in text.split(",")]
+        return {f"{name}_{k}": bpy.props.FloatVectorProperty(default=colours[k - 1], subtype="COLOR_GAMMA", min=0, max=1,
                                                              name=f"Colour {k}", description=p["help"])
-                for k, c in ((1, first), (2, second))}
+                for k in (1, 2)}
     raise ValueError(f"parameter {name}: unknown type {kind}")
 
 

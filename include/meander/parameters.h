@@ -49,6 +49,11 @@ bool has_unit(std::string_view text);
 // name as the client spells it ("--model-size", "model_size").
 void check_unit(const Parameter& p, std::string_view text, bool sized, std::string_view model_size);
 
+// A length that is not a job's (a sheet's margin, a pen): a non-negative number of
+// millimetres, or a number with its unit ("10mm", "1cm", "0.5in"). Throws ParameterError
+// naming `name`.
+double millimetres(std::string_view name, std::string_view text);
+
 // Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
 void check_parameter(const Parameter& p, double value, bool integer);
 

@@ -100,6 +100,12 @@ void check_unit(const Parameter& p, std::string_view text, bool sized, std::stri
                                      " (without it, lengths are in the model's own units)");
 }
 
+double millimetres(std::string_view name, std::string_view text) {
+  double value = 0;
+  set_parameter(Parameter{.name = name, .min = 0, .length = true}, text, value);
+  return value;
+}
+
 void check_parameter(const Parameter& p, double value, bool integer) {
   if (!std::isfinite(value) || value < p.min || value > p.max || (integer && value != std::floor(value)))
     refuse_number(p, integer, number_text(value));
