@@ -12,7 +12,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -21,7 +20,9 @@ namespace {
 
 using test::output_dir;
 using test::read_file;
+using test::read_svg_paths;
 using test::run_cli;
+using test::SvgPath;
 
 // n points of a circle of radius r round the axis `axis` (0 x, 1 y, 2 z) at height h.
 Polylines circle(int axis, double r, double h, int n = 360) {
@@ -99,32 +100,6 @@ TEST(Drawing, APaperNoLargerThanItsMarginsOrABadPenIsRefused) {
 
 // The paths of an SVG as the test reads them: each <path d="M x y L x y ... [Z]"> inside
 // a layer <g inkscape:groupmode="layer">.
-struct SvgPath {
-  std::vector<std::array<double, 2>> points;
-  bool closed = false;
-  int layer = -1;
-};
-
-std::vector<SvgPath> read_svg_paths(const std::string& svg, int& layers) {
-  std::vector<SvgPath> paths;
-  layers = 0;
-  const std::regex element(R"(<g inkscape:groupmode="layer"|<path d="([^"]*)\"/>)");
-  const std::regex number(R"(-?[0-9]+(\.[0-9]+)?)");
-  for (auto e = std::sregex_iterator(svg.begin(), svg.end(), element); e != std::sregex_iterator(); ++e) {
-    if (!(*e)[1].matched) {
-      ++layers;
-      continue;
-    }
-    const std::string d = (*e)[1];
-    SvgPath path{.closed = d.ends_with(" Z"), .layer = layers - 1};
-    std::vector<double> values;
-    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n) values.push_back(std::stod(n->str()));
-    for (size_t i = 0; i + 1 < values.size(); i += 2) path.points.push_back({values[i], values[i + 1]});
-    paths.push_back(std::move(path));
-  }
-  return paths;
-}
-
 TEST(CliDraw, APlotterDrawingOfAMeshFitsItsSheetOneLayerPerComponent) {
   const auto dir = output_dir();
   const std::string mesh = (dir / "two.obj").string(), svg = (dir / "two.svg").string(), png = (dir / "two.png").string();

@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -140,6 +141,35 @@ PolygonMesh crop(const PolygonMesh& mesh, Vec3 centre, double radius) {
     piece.add_face(face);
   }
   return piece;
+}
+
+std::vector<SvgPath> read_svg_paths(const std::string& svg, int& layers) {
+  // By hand rather than std::regex, whose matching recurses per character in libstdc++
+  // and overflows the stack on a path of a hundred thousand points.
+  std::vector<SvgPath> paths;
+  layers = 0;
+  const std::string layer = "<g inkscape:groupmode=\"layer\"", path = "<path d=\"";
+  for (size_t at = 0;;) {
+    const size_t g = svg.find(layer, at), p = svg.find(path, at);
+    if (g == std::string::npos && p == std::string::npos) break;
+    if (g < p) {
+      ++layers;
+      at = g + layer.size();
+      continue;
+    }
+    const size_t begin = p + path.size(), end = svg.find('"', begin);
+    const std::string d = svg.substr(begin, end - begin);
+    SvgPath read{.closed = d.ends_with(" Z"), .layer = layers - 1};
+    std::vector<double> values;
+    for (const char* c = d.c_str(); *c;) {
+      if (std::isdigit(static_cast<unsigned char>(*c)) || *c == '-') values.push_back(std::strtod(c, const_cast<char**>(&c)));
+      else ++c;
+    }
+    for (size_t i = 0; i + 1 < values.size(); i += 2) read.points.push_back({values[i], values[i + 1]});
+    paths.push_back(std::move(read));
+    at = end;
+  }
+  return paths;
 }
 
 } // namespace meander::test

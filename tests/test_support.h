@@ -74,4 +74,13 @@ struct CommandResult {
 // that does not depend on timing.
 CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64_t> max_file_size = std::nullopt);
 
+// A path of an SVG as Meander writes it ("M x y L x y ... [Z]"), read by the test's own
+// parser; `layer` counts the Inkscape layers before it, less one.
+struct SvgPath {
+  std::vector<std::array<double, 2>> points;
+  bool closed = false;
+  int layer = -1;
+};
+std::vector<SvgPath> read_svg_paths(const std::string& svg, int& layers);
+
 } // namespace meander::test

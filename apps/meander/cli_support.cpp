@@ -48,7 +48,8 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
         name,
         [&app, &p, &value](const std::string& text) {
           const std::string model_size = option_name(parameters::model_size.name);
-          check_unit(p, text, app.count(model_size) > 0, model_size);
+          const CLI::Option* sized = app.get_option_no_throw(model_size);
+          check_unit(p, text, sized && sized->count() > 0, model_size);
           set_parameter(p, text, value);
         },
         help);
@@ -69,13 +70,14 @@ template <class Job> void add_parameters(CLI::App& app, Job& job) {
 template void add_parameters(CLI::App&, CurveJob&);
 template void add_parameters(CLI::App&, WireJob&);
 template void add_parameters(CLI::App&, DuotoneJob&);
+template void add_parameters(CLI::App&, ImageJob&);
 
 void add_max_faces(CLI::App& app, int64_t& max_faces) {
   app.add_option("--max-faces", max_faces, "refuse an input, or a surface remeshed to --spacing, of more faces (0: no limit)")->check(CLI::NonNegativeNumber)->capture_default_str();
 }
 
-std::string leaves_note(const TriangleCycle& cycle) {
-  return "tree: " + std::to_string(cycle.leaves) + " leaves (the tips of the curve's branches; --branches sets how many)";
+std::string leaves_note(int64_t leaves) {
+  return "tree: " + std::to_string(leaves) + " leaves (the tips of the curve's branches; --branches sets how many)";
 }
 
 void require_memory_for_spacing(const std::string& input, const PolygonMesh& mesh, std::optional<double> model_size,

@@ -32,16 +32,16 @@ template <class Job> void add_parameters(CLI::App& app, Job& job);
 
 // --max-faces: refuse larger inputs (RepairOptions::max_faces).
 void add_max_faces(CLI::App& app, int64_t& max_faces);
-// Whether the input may be put in another order before `job` (RepairOptions::reorder):
-// not under --quad none, which refuses a face that is not a quad by its number.
 // What -v says of the cycle's tree (made with CycleOptions::count_leaves).
-std::string leaves_note(const TriangleCycle& cycle);
+std::string leaves_note(int64_t leaves);
 
 // Refuses (UsageError, before any work) a --spacing whose remeshed surface would not fit in
 // memory, naming its faces.
 void require_memory_for_spacing(const std::string& input, const PolygonMesh& mesh, std::optional<double> model_size,
                                 std::optional<double> spacing, Quadrangulation quadrangulation);
 
+// Whether the input may be put in another order before `job` (RepairOptions::reorder):
+// not under --quad none, which refuses a face that is not a quad by its number.
 bool reorders(const CurveJob& job);
 
 // Refuses (UsageError, naming `input`), before it is made, a result of this many

@@ -21,5 +21,6 @@ Command add_wire_command(CLI::App& parent);
 Command add_duotone_command(CLI::App& parent);
 Command add_serve_command(CLI::App& parent);
 Command add_draw_command(CLI::App& parent);
+Command add_image_command(CLI::App& parent);
 
 } // namespace meander::cli

@@ -48,7 +48,7 @@ void run_curve(const CurveArgs& a) {
     log.lap("render png");
   }
   const int32_t curves = result.cycle.num_cycles();
-  log.note(leaves_note(result.cycle));
+  log.note(leaves_note(result.cycle.leaves));
   log.note("wrote " + a.output + ": " + std::to_string(curves) + " closed curve" + (curves == 1 ? "" : "s") + ", " +
            std::to_string(points) + " points");
   if (!a.triangles.empty())

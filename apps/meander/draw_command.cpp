@@ -53,7 +53,7 @@ void run_draw(const DrawArgs& a) {
     if (!a.occluder.empty()) throw UsageError("--occluder " + a.occluder + ": only a curve file takes one (" + a.input + " is a mesh, which hides its own curve)");
     job.cycle.count_leaves = a.verbose;
     const CurveResult result = make_input_curve(a.input, log, job, a.strict);
-    log.note(leaves_note(result.cycle));
+    log.note(leaves_note(result.cycle.leaves));
     scene = curve_scene(result, occluder_style(a.picture));
   }
   static const PolygonMesh no_surface;

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   using namespace meander::cli;
   const std::vector<Command> commands = {add_curve_command(app), add_info_command(app), add_generate_command(app),
                                          add_render_command(app), add_wire_command(app),
-                                         add_serve_command(app), add_duotone_command(app), add_draw_command(app)};
+                                         add_serve_command(app), add_duotone_command(app), add_draw_command(app),
+                                         add_image_command(app)};
   try {
     app.parse(argc, argv);
     for (const Command& c : commands)

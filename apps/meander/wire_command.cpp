@@ -64,7 +64,7 @@ void run_wire(const WireArgs& a) {
 
   StageLog log(a.verbose);
   const CurveResult curve = make_input_curve(a.input, log, curve_job, a.strict);
-  log.note(leaves_note(curve.cycle));
+  log.note(leaves_note(curve.cycle.leaves));
   StageTimes times;
   if (const std::vector<std::string> notes = slab_mesh_notes(curve, job); !notes.empty()) {
     std::string said = notes[0];

@@ -40,6 +40,11 @@ struct Point2 {
   double x = 0, y = 0;
 };
 
+// A rectangle on the sheet, in millimetres from its top-left corner.
+struct Rect {
+  double x = 0, y = 0, width = 0, height = 0;
+};
+
 // Paths on the paper in millimetres from its top-left corner, x to the right and y down
 // (as SVG): path k is points[start[k] .. start[k+1]), closed back to its first point when
 // closed[k] is set, drawn from the curve layer[k]; in drawing order, layer by layer.
@@ -69,10 +74,25 @@ struct Drawing {
 // pen not a positive number. Parallel (oneTBB); deterministic.
 Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const DrawingOptions& options);
 
+// Curves already on the sheet (x, y in millimetres from its top-left corner, y down; z
+// is not used) as a drawing, each a layer: the points the pen cannot show dropped, paths
+// shorter than its width left out, in draw_curves' order. O(points).
+Drawing sheet_drawing(const Polylines& curves, const Paper& paper, double pen);
+
 // The drawing as SVG for plotters and Inkscape: the sheet's size in millimetres (one user
 // unit a millimetre), one Inkscape layer per curve, each path one <path> of straight
 // segments in drawing order, stroked with the pen's width.
 std::string drawing_svg(const Drawing& drawing, double pen);
+
+// The two regions a drawing of closed paths bounds inside `area` as SVG: `inside` where an
+// odd number of them surround a point (one simple closed curve: what it encloses), the
+// rest of the area `outside`, no stroke (the duotone of a line picture).
+std::string duotone_svg(const Drawing& drawing, const Rect& area, Rgb inside, Rgb outside);
+
+// The drawing as the paper shows it: `width` pixels across (the height in the sheet's
+// proportions), the pen's strokes black and antialiased on white. Throws UsageError for a
+// width outside 1..16384 or a height that would be. O(pixels + points * pen width).
+Image drawing_image(const Drawing& drawing, double pen, int32_t width);
 
 // Writes drawing_svg atomically (io.h, write_bytes).
 void write_drawing(const Drawing& drawing, double pen, const std::filesystem::path& path);

@@ -6,10 +6,12 @@
 // of a result: the *_scene functions.
 #pragma once
 
+#include "meander/drawing.h"
 #include "meander/duotone.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
 #include "meander/render.h"
+#include "meander/tone_mesh.h"
 #include "meander/wire.h"
 
 #include <optional>
@@ -101,6 +103,41 @@ Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, 
 // as make_wire's.
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas = {},
                            StageTimes* times = nullptr, Progress* progress = nullptr);
+
+// `meander image`: a picture drawn with one closed line on a sheet (docs/drawing.md).
+struct ImageJob {
+  ToneOptions tone;
+  // The sheet and its margin, turned to the picture's orientation; the picture fills what
+  // is inside the margins as far as its proportions let it, centred.
+  Paper paper;
+  // Set: the picture is this wide in millimetres, and the sheet is the picture and the
+  // margins round it (`paper`'s size is not used).
+  std::optional<double> width;
+  double pen = 0.3; // millimetres
+  CycleOptions cycle;
+  CurveOptions curve;
+  int64_t max_pixels = 50'000'000; // a larger picture is refused (read_texture)
+  // The duotone's regions: inside the curve, and between it and the picture's edges.
+  std::array<Color8, 2> colors = TileOptions{}.colors;
+};
+
+struct LinePicture {
+  Rect area;       // where the picture lies on the sheet
+  Polylines curve; // the closed curve on the sheet: millimetres, y down, z = 0
+  Drawing drawing;
+  int32_t cells = 0; // the quadtree's
+  int64_t leaves = -1; // the tree's, with job.cycle.count_leaves
+};
+
+// tone_mesh of the picture on the sheet, its Hamiltonian cycle (one: the cells are a
+// disk) and the smooth curve, laid out as a drawing. Throws ParameterError for values out
+// of range, UsageError for a sheet with no room inside its margins, and Cancelled by
+// `progress` between stages. Appends to `times` if given.
+LinePicture make_line_picture(const Texture& picture, const ImageJob& job, StageTimes* times = nullptr,
+                              Progress* progress = nullptr);
+
+// The line picture's duotone (duotone_svg): inside the curve in the first colour.
+std::string line_picture_duotone_svg(const LinePicture& picture, const ImageJob& job);
 
 // The colours of the pictures: a copper wire on a light grey surface.
 inline constexpr Rgb wire_color{0.72f, 0.45f, 0.2f};

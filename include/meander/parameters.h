@@ -24,16 +24,17 @@ struct Parameter {
   // Names: the accepted ones (radius, a positive number or a name, lists its name).
   std::span<const std::string_view> choices;
   // A length: its value may carry a unit (mm, cm, m, in), and is then in millimetres,
-  // which only a model size allows (has_unit), but for the nozzle, always in millimetres.
+  // which only a model size allows (has_unit), unless the length is always in millimetres.
   bool length = false;
+  bool millimetres = false;
 };
 
 // The value of parameter p from text, as the CLI gets it and the studio gets names:
 // throws ParameterError naming p ("samples: expected an integer in [1, 1000], got 0").
 // T is int, uint64_t, double, bool, one of the jobs' enums, std::optional<double> (a
 // number in p's range where it has one, else a positive number, or p's one choice for
-// none: radius "auto", spacing "none") or
-// std::array<Color8, 2> (colors).
+// none: radius "auto", spacing "none"), std::array<Color8, 2> (colors) or Paper
+// (parse_paper's names and sizes; the margin is a parameter of its own).
 template <class T> void set_parameter(const Parameter& p, std::string_view text, T& value);
 
 // A value of parameter p as set_parameter reads it: the default shown in help texts.
@@ -45,7 +46,7 @@ bool has_unit(std::string_view text);
 
 // Throws ParameterError when `text`, a value of parameter p, carries a unit while the job
 // has no model size (`sized`): lengths are then in the model's own units. The model size
-// and the nozzle (always in millimetres) may carry one. `model_size` is the model size's
+// and the lengths always in millimetres (the nozzle, a sheet's) may carry one. `model_size` is the model size's
 // name as the client spells it ("--model-size", "model_size").
 void check_unit(const Parameter& p, std::string_view text, bool sized, std::string_view model_size);
 
@@ -57,14 +58,15 @@ double millimetres(std::string_view name, std::string_view text);
 // Throws ParameterError unless `value` is a number in p's range (an integer where `integer`).
 void check_parameter(const Parameter& p, double value, bool integer);
 
-// Calls visit(parameter, field) for each parameter of a CurveJob, WireJob or DuotoneJob
-// (const or not), in the order the help lists them; `field` is a reference into the job.
+// Calls visit(parameter, field) for each parameter of a CurveJob, WireJob, DuotoneJob or
+// ImageJob (const or not), in the order the help lists them; `field` is a reference into the job.
 template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit);
 
 // Throws ParameterError for the first value of the job out of its parameter's range.
 void check_parameters(const CurveJob& job);
 void check_parameters(const WireJob& job);
 void check_parameters(const DuotoneJob& job);
+void check_parameters(const ImageJob& job);
 
 // The descriptions.
 namespace parameters {
@@ -103,7 +105,8 @@ inline constexpr Parameter model_size{.name = "model_size",
                                               "in millimetres (glTF in metres), and lengths may carry units (none: the "
                                               "model's own units)",
                                       .choices = model_size_choices,
-                                      .length = true};
+                                      .length = true,
+                                      .millimetres = true};
 inline constexpr Parameter spacing{.name = "spacing",
                                    .help = "the distance between neighbouring passes of the curve, in mesh units "
                                            "(millimetres with a model size): the surface is first remeshed evenly to "
@@ -158,7 +161,8 @@ inline constexpr Parameter nozzle{.name = "nozzle",
                                           "smallest size it prints at",
                                   .min = 0.01,
                                   .max = 10,
-                                  .length = true};
+                                  .length = true,
+                                  .millimetres = true};
 
 inline constexpr Parameter duotone_quad{.name = "quad",
                                         .help = "2-colourable quads: catmull-clark (dual-simplest on a mesh with "
@@ -180,11 +184,57 @@ inline constexpr Parameter subdivide{.name = "subdivide",
                                      .min = 0,
                                      .max = 5};
 
+// `meander image`: every length in millimetres on the sheet.
+inline constexpr std::string_view width_choices[] = {"none"};
+inline constexpr Parameter image_spacing{.name = "spacing",
+                                         .help = "the gap between neighbouring passes of the line where the picture is "
+                                                 "black (mm, or with a unit)",
+                                         .min = 0.05,
+                                         .max = 100,
+                                         .length = true,
+                                         .millimetres = true};
+inline constexpr Parameter max_spacing{.name = "max_spacing",
+                                       .help = "the gap where the picture is white (mm, or with a unit; at least the spacing)",
+                                       .min = 0.05,
+                                       .max = 1000,
+                                       .length = true,
+                                       .millimetres = true};
+inline constexpr Parameter gamma{.name = "gamma",
+                                 .help = "brightness is the picture's to the power 1/gamma: more than 1 lightens the "
+                                         "middle tones, less darkens them",
+                                 .min = 0.1,
+                                 .max = 10};
+inline constexpr Parameter invert{.name = "invert", .help = "draw the light parts instead of the dark (a light pen on dark paper)"};
+inline constexpr Parameter paper{.name = "paper", .help = "the sheet: A3, A4, A5, letter, legal or WIDTHxHEIGHT in mm, "
+                                                          "turned to the picture's orientation"};
+inline constexpr Parameter margin{.name = "margin",
+                                  .help = "blank margin on each side of the sheet (mm, or with a unit)",
+                                  .min = 0,
+                                  .length = true,
+                                  .millimetres = true};
+inline constexpr Parameter width{.name = "width",
+                                 .help = "the picture's width on the sheet (mm, or with a unit), the sheet then the "
+                                         "picture and its margins (none: as large as the paper allows)",
+                                 .choices = width_choices,
+                                 .length = true,
+                                 .millimetres = true};
+inline constexpr Parameter pen{.name = "pen",
+                               .help = "the pen's width (mm, or with a unit): the stroke, and the detail kept",
+                               .min = 0.01,
+                               .max = 20,
+                               .length = true,
+                               .millimetres = true};
+inline constexpr Parameter max_pixels{.name = "max_pixels", .help = "refuse a larger picture", .min = 1};
+inline constexpr Parameter duotone_colors{.name = "colors",
+                                          .help = "the duotone's colours C1,C2 (inside the line, outside): names (yellow, "
+                                                  "gold, blue, navy, red, ...) or #rrggbb"};
+
 } // namespace parameters
 
 template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit) {
   using Plain = std::remove_const_t<Job>;
-  static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob>);
+  static_assert(std::is_same_v<Plain, CurveJob> || std::is_same_v<Plain, WireJob> || std::is_same_v<Plain, DuotoneJob> ||
+                std::is_same_v<Plain, ImageJob>);
   if constexpr (std::is_same_v<Plain, CurveJob>) {
     visit(parameters::model_size, job.model_size);
     visit(parameters::spacing, job.spacing);
@@ -209,6 +259,22 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::levels, job.levels);
     visit(parameters::min_thickness, job.min_thickness);
     visit(parameters::nozzle, job.nozzle);
+  } else if constexpr (std::is_same_v<Plain, ImageJob>) {
+    visit(parameters::paper, job.paper);
+    visit(parameters::margin, job.paper.margin);
+    visit(parameters::width, job.width);
+    visit(parameters::pen, job.pen);
+    visit(parameters::image_spacing, job.tone.spacing);
+    visit(parameters::max_spacing, job.tone.max_spacing);
+    visit(parameters::gamma, job.tone.gamma);
+    visit(parameters::invert, job.tone.invert);
+    visit(parameters::tree, job.cycle.tree);
+    visit(parameters::branches, job.cycle.branches);
+    visit(parameters::seed, job.cycle.seed);
+    visit(parameters::smooth, job.curve.smoothing);
+    visit(parameters::samples, job.curve.samples);
+    visit(parameters::max_pixels, job.max_pixels);
+    visit(parameters::duotone_colors, job.colors);
   } else {
     visit(parameters::model_size, job.model_size);
     visit(parameters::spacing, job.spacing);

@@ -37,11 +37,12 @@ TexturedMesh read_textured_mesh(const std::filesystem::path& path);
 
 // Reads an image file as an RGBA8 texture: JPEG as libjpeg-turbo decodes it; PNG, BMP,
 // TGA, GIF, ... as stb_image does. IOError if it cannot be opened, InputError("path:
-// cannot decode image: ...").
-Texture read_texture(const std::filesystem::path& path);
+// cannot decode image: ..."), as for an image of more than `max_pixels` pixels unless it
+// is 0 (before they are decoded).
+Texture read_texture(const std::filesystem::path& path, int64_t max_pixels = 0);
 
 // The same from bytes in memory; `name` stands for the file in messages.
-Texture read_texture(std::string_view bytes, std::string_view name);
+Texture read_texture(std::string_view bytes, std::string_view name, int64_t max_pixels = 0);
 
 // Writes a mesh with its appearance (check_appearance must accept it, else UsageError):
 //  .obj  OBJ with v, vt and f v/vt, `usemtl` before each run of faces of one material,

@@ -13,8 +13,9 @@ namespace meander::io {
 
 // Throws InputError("name: cannot decode image: <reason>") for bytes that are not an
 // image stb_image reads, and for images wider or taller than 16384 pixels (checked
-// before the pixels are allocated). Grey and RGB images get opaque RGBA.
-Texture decode_image(std::string_view bytes, std::string_view name);
+// before the pixels are allocated), as for images of more than `max_pixels` pixels when
+// it is not 0. Grey and RGB images get opaque RGBA.
+Texture decode_image(std::string_view bytes, std::string_view name, int64_t max_pixels = 0);
 
 // The pixels (rows top to bottom, `channels` bytes each: 3 RGB or 4 RGBA) as PNG bytes.
 // Throws Error("name: PNG encoding failed") if stb refuses them.

@@ -23,17 +23,20 @@ namespace {
 constexpr int max_side = 16384;
 
 // A texture has at least one pixel (a BMP may declare a height of 0, found by fuzz_image).
-void check_size(int width, int height, std::string_view name) {
+void check_size(int width, int height, std::string_view name, int64_t max_pixels) {
   if (width < 1 || height < 1 || width > max_side || height > max_side)
     fail_input(name, "cannot decode image: " + std::to_string(width) + "x" + std::to_string(height) +
                          " pixels (1 to " + std::to_string(max_side) + " on a side)");
+  if (max_pixels > 0 && int64_t(width) * height > max_pixels)
+    fail_input(name, std::to_string(width) + "x" + std::to_string(height) + " pixels, more than the " +
+                         std::to_string(max_pixels) + " allowed");
 }
 
 // JPEG through libjpeg-turbo: Debian 12's stb_image (a 2022-09 snapshot) reads and writes
 // past its Huffman tables on crafted files (nothings/stb#1289 and #1291, fixed upstream
 // later), as fuzz_image found within seconds. A warning (a truncated file) still gives
 // the picture, as image viewers show it.
-Texture decode_jpeg(std::string_view bytes, std::string_view name) {
+Texture decode_jpeg(std::string_view bytes, std::string_view name, int64_t max_pixels) {
   const std::unique_ptr<void, int (*)(tjhandle)> decoder(tjInitDecompress(), tjDestroy);
   if (!decoder) fail_input(name, "cannot decode image: cannot start the JPEG decoder");
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -42,7 +45,7 @@ Texture decode_jpeg(std::string_view bytes, std::string_view name) {
   if (tjDecompressHeader3(decoder.get(), data, static_cast<unsigned long>(bytes.size()), &width, &height, &subsampling,
                           &colorspace) != 0)
     fail_input(name, failed());
-  check_size(width, height, name);
+  check_size(width, height, name, max_pixels);
   Texture texture{.width = width, .height = height};
   texture.rgba.resize(size_t(width) * size_t(height) * 4);
   if (tjDecompress2(decoder.get(), data, static_cast<unsigned long>(bytes.size()), texture.rgba.data(), width, 0, height,
@@ -120,9 +123,9 @@ bool claimed_pixels_fit(std::string_view bytes, int width, int height) {
 
 } // namespace
 
-Texture decode_image(std::string_view bytes, std::string_view name) {
+Texture decode_image(std::string_view bytes, std::string_view name, int64_t max_pixels) {
   if (bytes.size() > size_t(INT_MAX)) fail_input(name, "cannot decode image: file too large");
-  if (bytes.starts_with("\xFF\xD8")) return decode_jpeg(bytes, name);
+  if (bytes.starts_with("\xFF\xD8")) return decode_jpeg(bytes, name, max_pixels);
   std::string png;
   if (bytes.starts_with("\x89PNG\r\n\x1A\n")) {
     std::optional<std::string> chunks = png_for_stb(bytes);
@@ -137,7 +140,7 @@ Texture decode_image(std::string_view bytes, std::string_view name) {
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
     fail_input(name, std::string("cannot decode image: ") + stbi_failure_reason());
-  check_size(width, height, name);
+  check_size(width, height, name, max_pixels);
   if (!claimed_pixels_fit(bytes, width, height))
     fail_input(name, "cannot decode image: " + std::to_string(width) + "x" + std::to_string(height) +
                          " pixels claimed by a file of " + std::to_string(bytes.size()) + " bytes");

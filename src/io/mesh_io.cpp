@@ -65,13 +65,15 @@ TexturedMesh read_textured_mesh(const std::filesystem::path& path) {
   return format == MeshFormat::obj ? io::read_textured_obj(file.bytes(), path) : io::read_gltf(file.bytes(), path);
 }
 
-Texture read_texture(const std::filesystem::path& path) {
+Texture read_texture(const std::filesystem::path& path, int64_t max_pixels) {
   const io::MappedFile file(path);
   if (file.bytes().empty()) io::fail_input(path.string(), "file is empty");
-  return read_texture(file.bytes(), path.string());
+  return read_texture(file.bytes(), path.string(), max_pixels);
 }
 
-Texture read_texture(std::string_view bytes, std::string_view name) { return io::decode_image(bytes, name); }
+Texture read_texture(std::string_view bytes, std::string_view name, int64_t max_pixels) {
+  return io::decode_image(bytes, name, max_pixels);
+}
 
 namespace {
 

@@ -171,3 +171,47 @@ Scene duotone_scene(const TexturedMesh& surface) {
 }
 
 } // namespace meander
+
+namespace meander {
+
+LinePicture make_line_picture(const Texture& picture, const ImageJob& job, StageTimes* times, Progress* progress) {
+  check_parameters(job);
+  if (picture.width < 2 || picture.height < 2)
+    throw InputError("a picture of " + std::to_string(picture.width) + "x" + std::to_string(picture.height) +
+                     " pixels has no tones to draw (at least 2x2)");
+  Stages stages(times, progress);
+  stages.begin("tones");
+  LinePicture out;
+  Paper paper = job.paper;
+  if (job.width) {
+    paper.width = *job.width + 2 * paper.margin;
+    paper.height = *job.width * picture.height / picture.width + 2 * paper.margin;
+  } else if ((paper.width > paper.height) != (picture.width > picture.height)) {
+    std::swap(paper.width, paper.height);
+  }
+  const double room_x = paper.width - 2 * paper.margin, room_y = paper.height - 2 * paper.margin;
+  if (!(room_x > 0 && room_y > 0))
+    throw UsageError("paper of " + std::to_string(paper.width) + " x " + std::to_string(paper.height) +
+                     " mm: no room inside margins of " + std::to_string(paper.margin) + " mm");
+  const double scale = std::min(room_x / picture.width, room_y / picture.height);
+  out.area = {.width = picture.width * scale, .height = picture.height * scale};
+  out.area.x = (paper.width - out.area.width) / 2, out.area.y = (paper.height - out.area.height) / 2;
+  PolygonMesh cells = tone_mesh(picture, out.area, job.tone);
+  out.cells = cells.num_faces();
+  stages.end();
+  CurveResult curve = make_curve(std::move(cells), CurveJob{.cycle = job.cycle, .curve = job.curve}, times, progress);
+  out.leaves = curve.cycle.leaves;
+  out.curve = std::move(curve.curves);
+  Stages layout(times, progress);
+  layout.begin("layout");
+  out.drawing = sheet_drawing(out.curve, paper, job.pen);
+  layout.end();
+  return out;
+}
+
+std::string line_picture_duotone_svg(const LinePicture& picture, const ImageJob& job) {
+  const auto rgb = [](Color8 c) { return Rgb{c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f}; };
+  return duotone_svg(picture.drawing, picture.area, rgb(job.colors[0]), rgb(job.colors[1]));
+}
+
+} // namespace meander

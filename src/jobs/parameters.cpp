@@ -95,7 +95,7 @@ bool has_unit(std::string_view text) {
 }
 
 void check_unit(const Parameter& p, std::string_view text, bool sized, std::string_view model_size) {
-  if (p.length && !sized && &p != &parameters::model_size && &p != &parameters::nozzle && has_unit(text))
+  if (p.length && !p.millimetres && !sized && has_unit(text))
     throw ParameterError(p.name, ": " + std::string(text) + " carries a unit, which needs " + std::string(model_size) +
                                      " (without it, lengths are in the model's own units)");
 }
@@ -138,6 +138,13 @@ template <class T> void set_parameter(const Parameter& p, std::string_view text,
     value = r * millimetres;
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     value = parse_duotone_colors(text); // its refusals name the parameter
+  } else if constexpr (std::is_same_v<T, Paper>) {
+    try {
+      const Paper named = parse_paper(text);
+      value.width = named.width, value.height = named.height;
+    } catch (const UsageError& e) {
+      throw ParameterError(p.name, std::string(": ") + e.what());
+    }
   } else {
     if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
       throw ParameterError(p.name, ": unknown value '" + shown(text) + "' (expected " + listed(p.choices) + ")");
@@ -154,6 +161,8 @@ template <class T> std::string parameter_text(const Parameter& p, const T& value
     return number_text(value);
   } else if constexpr (std::is_same_v<T, std::optional<double>>) {
     return value ? number_text(*value) : std::string(p.choices[0]);
+  } else if constexpr (std::is_same_v<T, Paper>) {
+    return number_text(value.width) + "x" + number_text(value.height) + "mm";
   } else if constexpr (std::is_same_v<T, std::array<Color8, 2>>) {
     char text[16];
     std::snprintf(text, sizeof text, "#%02x%02x%02x,#%02x%02x%02x", value[0][0], value[0][1], value[0][2], value[1][0],
@@ -170,6 +179,7 @@ template <class T> std::string parameter_text(const Parameter& p, const T& value
   template void set_parameter<__VA_ARGS__>(const Parameter&, std::string_view, __VA_ARGS__&);                        \
   template std::string parameter_text<__VA_ARGS__>(const Parameter&, const __VA_ARGS__&);
 MEANDER_PARAMETER_TYPE(int)
+MEANDER_PARAMETER_TYPE(int64_t)
 MEANDER_PARAMETER_TYPE(uint64_t)
 MEANDER_PARAMETER_TYPE(double)
 MEANDER_PARAMETER_TYPE(bool)
@@ -182,6 +192,7 @@ MEANDER_PARAMETER_TYPE(DuotoneRule)
 MEANDER_PARAMETER_TYPE(TileStyle)
 MEANDER_PARAMETER_TYPE(std::optional<double>)
 MEANDER_PARAMETER_TYPE(std::array<Color8, 2>)
+MEANDER_PARAMETER_TYPE(Paper)
 #undef MEANDER_PARAMETER_TYPE
 
 void check_parameters(const CurveJob& job) { check_numbers(job); }
@@ -191,5 +202,11 @@ void check_parameters(const WireJob& job) {
     throw ParameterError(parameters::min_thickness.name, " applies to wires: a ribbon is a band with no thickness to measure");
 }
 void check_parameters(const DuotoneJob& job) { check_numbers(job); }
+void check_parameters(const ImageJob& job) {
+  check_numbers(job);
+  if (job.tone.max_spacing < job.tone.spacing)
+    throw ParameterError(parameters::max_spacing.name, " must be at least the spacing (" + number_text(job.tone.spacing) +
+                                                           " mm), got " + number_text(job.tone.max_spacing) + " mm");
+}
 
 } // namespace meander

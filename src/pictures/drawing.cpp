@@ -180,15 +180,46 @@ std::vector<Path> ordered(std::vector<Path> paths, int32_t layers) {
   return out;
 }
 
-} // namespace
-
-Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const DrawingOptions& options) {
-  const Paper& paper = options.paper;
+void check_sheet(const Paper& paper, double pen) {
   const double area_width = paper.width - 2 * paper.margin, area_height = paper.height - 2 * paper.margin;
   if (!(paper.margin >= 0 && area_width > 0 && area_height > 0 && std::isfinite(area_width + area_height)))
     throw UsageError("paper of " + std::to_string(paper.width) + " x " + std::to_string(paper.height) +
                      " mm: no room inside margins of " + std::to_string(paper.margin) + " mm");
-  if (!(options.pen > 0 && std::isfinite(options.pen))) throw UsageError("pen: expected a positive width in millimetres");
+  if (!(pen > 0 && std::isfinite(pen))) throw UsageError("pen: expected a positive width in millimetres");
+}
+
+// Paths on the sheet as the drawing: only the points the pen shows, no dots, in order.
+Drawing laid_out(std::vector<Path> paths, const Paper& paper, double pen, int32_t layers) {
+  tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) { paths[i].points = simplified(paths[i].points, paths[i].closed, pen / 20); });
+  // A path shorter than the pen is wide would be a dot: a glimpse of the curve at a
+  // silhouette.
+  std::erase_if(paths, [&](const Path& p) {
+    double length = 0;
+    for (size_t i = 1; i < p.points.size(); ++i) length += distance(p.points[i - 1], p.points[i]);
+    return p.points.size() < 2 || length < pen;
+  });
+
+  Drawing drawing{.paper = paper, .layers = layers};
+  Point2 at{0, 0};
+  for (Path& p : ordered(std::move(paths), layers)) {
+    drawing.travel += distance(at, p.points.front());
+    for (size_t i = 1; i < p.points.size(); ++i) drawing.drawn_length += distance(p.points[i - 1], p.points[i]);
+    if (p.closed) drawing.drawn_length += distance(p.points.back(), p.points.front());
+    at = p.closed ? p.points.front() : p.points.back();
+    drawing.points.insert(drawing.points.end(), p.points.begin(), p.points.end());
+    drawing.start.push_back(int32_t(drawing.points.size()));
+    drawing.closed.push_back(p.closed);
+    drawing.layer.push_back(p.layer);
+  }
+  return drawing;
+}
+
+} // namespace
+
+Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const DrawingOptions& options) {
+  const Paper& paper = options.paper;
+  check_sheet(paper, options.pen);
+  const double area_width = paper.width - 2 * paper.margin, area_height = paper.height - 2 * paper.margin;
 
   // The pictures' camera for this scene, in the drawable area's proportions.
   Scene scene;
@@ -274,75 +305,146 @@ Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const 
   const double offset_y = paper.margin + (area_height - extent_y * fit) / 2 - lo_y * fit;
   tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) {
     for (Point2& q : paths[i].points) q = {offset_x + q.x * fit, offset_y + q.y * fit};
-    paths[i].points = simplified(paths[i].points, paths[i].closed, options.pen / 20);
   });
-  // A path shorter than the pen is wide would be a dot: a glimpse of the curve at a
-  // silhouette.
-  std::erase_if(paths, [&](const Path& p) {
-    double length = 0;
-    for (size_t i = 1; i < p.points.size(); ++i) length += distance(p.points[i - 1], p.points[i]);
-    return p.points.size() < 2 || length < options.pen;
-  });
-
-  Drawing drawing{.paper = paper, .layers = curves.size()};
-  Point2 pen{0, 0};
-  for (Path& p : ordered(std::move(paths), curves.size())) {
-    drawing.travel += distance(pen, p.points.front());
-    for (size_t i = 1; i < p.points.size(); ++i) drawing.drawn_length += distance(p.points[i - 1], p.points[i]);
-    if (p.closed) drawing.drawn_length += distance(p.points.back(), p.points.front());
-    pen = p.closed ? p.points.front() : p.points.back();
-    drawing.points.insert(drawing.points.end(), p.points.begin(), p.points.end());
-    drawing.start.push_back(int32_t(drawing.points.size()));
-    drawing.closed.push_back(p.closed);
-    drawing.layer.push_back(p.layer);
-  }
-  return drawing;
+  return laid_out(std::move(paths), paper, options.pen, curves.size());
 }
+
+Drawing sheet_drawing(const Polylines& curves, const Paper& paper, double pen) {
+  check_sheet(paper, pen);
+  std::vector<Path> paths(size_t(curves.size()));
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    paths[size_t(k)] = {.closed = curves.closed(k), .layer = k};
+    for (const Vec3& p : curves.polyline(k)) paths[size_t(k)].points.push_back({p.x, p.y});
+  }
+  return laid_out(std::move(paths), paper, pen, curves.size());
+}
+
+namespace {
+
+// Millimetres to 1/1000, without the trailing zeros that say nothing ("12.5", "3").
+void put(std::string& out, double value) {
+  char number[64];
+  std::snprintf(number, sizeof number, "%.3f", value);
+  std::string_view text = number;
+  while (text.find('.') != std::string_view::npos && (text.back() == '0' || text.back() == '.')) {
+    const bool dot = text.back() == '.';
+    text.remove_suffix(1);
+    if (dot) break;
+  }
+  out += text == "-0" ? "0" : text;
+}
+
+void put_header(std::string& out, const Paper& paper) {
+  out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+         "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" width=\"";
+  put(out, paper.width);
+  out += "mm\" height=\"";
+  put(out, paper.height);
+  out += "mm\" viewBox=\"0 0 ";
+  put(out, paper.width);
+  out += ' ';
+  put(out, paper.height);
+  out += "\">\n";
+}
+
+// Path k's d attribute: "M x y L x y ... Z".
+void put_path(std::string& out, const Drawing& d, int32_t k) {
+  for (int32_t i = d.start[size_t(k)]; i < d.start[size_t(k) + 1]; ++i) {
+    out += i == d.start[size_t(k)] ? "M" : " L";
+    put(out, d.points[size_t(i)].x);
+    out += ' ';
+    put(out, d.points[size_t(i)].y);
+  }
+  if (d.closed[size_t(k)]) out += " Z";
+}
+
+std::string hex(Rgb c) {
+  char text[8];
+  const auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return text;
+}
+
+} // namespace
 
 std::string drawing_svg(const Drawing& d, double pen) {
   std::string out;
-  char number[64];
-  const auto put = [&](double value) {
-    std::snprintf(number, sizeof number, "%.3f", value);
-    std::string_view text = number;
-    // Trailing zeros say nothing: "12.500" is "12.5", "3.000" is "3".
-    while (text.find('.') != std::string_view::npos && (text.back() == '0' || text.back() == '.')) {
-      const bool dot = text.back() == '.';
-      text.remove_suffix(1);
-      if (dot) break;
-    }
-    out += text == "-0" ? "0" : text;
-  };
-  out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
-         "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" width=\"";
-  put(d.paper.width);
-  out += "mm\" height=\"";
-  put(d.paper.height);
-  out += "mm\" viewBox=\"0 0 ";
-  put(d.paper.width);
-  out += ' ';
-  put(d.paper.height);
-  out += "\">\n";
+  put_header(out, d.paper);
   for (int32_t k = 0, path = 0; k < d.layers; ++k) {
     if (path == d.size() || d.layer[size_t(path)] != k) continue;
     out += "<g inkscape:groupmode=\"layer\" inkscape:label=\"" + std::to_string(k + 1) + " curve " + std::to_string(k + 1) +
            "\" id=\"layer" + std::to_string(k + 1) + "\" fill=\"none\" stroke=\"black\" stroke-width=\"";
-    put(pen);
+    put(out, pen);
     out += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     for (; path < d.size() && d.layer[size_t(path)] == k; ++path) {
       out += "<path d=\"";
-      for (int32_t i = d.start[size_t(path)]; i < d.start[size_t(path) + 1]; ++i) {
-        out += i == d.start[size_t(path)] ? "M" : " L";
-        put(d.points[size_t(i)].x);
-        out += ' ';
-        put(d.points[size_t(i)].y);
-      }
-      out += d.closed[size_t(path)] ? " Z\"/>\n" : "\"/>\n";
+      put_path(out, d, path);
+      out += "\"/>\n";
     }
     out += "</g>\n";
   }
   out += "</svg>\n";
   return out;
+}
+
+std::string duotone_svg(const Drawing& d, const Rect& area, Rgb inside, Rgb outside) {
+  std::string out;
+  put_header(out, d.paper);
+  out += "<rect x=\"";
+  put(out, area.x);
+  out += "\" y=\"";
+  put(out, area.y);
+  out += "\" width=\"";
+  put(out, area.width);
+  out += "\" height=\"";
+  put(out, area.height);
+  out += "\" fill=\"" + hex(outside) + "\"/>\n<path fill=\"" + hex(inside) + "\" fill-rule=\"evenodd\" d=\"";
+  for (int32_t k = 0; k < d.size(); ++k)
+    if (d.closed[size_t(k)]) {
+      if (out.back() != '"') out += ' ';
+      put_path(out, d, k);
+    }
+  out += "\"/>\n</svg>\n";
+  return out;
+}
+
+Image drawing_image(const Drawing& d, double pen, int32_t width) {
+  const double height_px = std::round(width * d.paper.height / d.paper.width);
+  if (width < 1 || width > 16384 || !(height_px >= 1 && height_px <= 16384))
+    throw UsageError("picture of " + std::to_string(width) + " x " + std::to_string(height_px) +
+                     " pixels: each side must be 1 to 16384");
+  const int32_t w = width, h = int32_t(height_px);
+  const double scale = w / d.paper.width; // pixels a millimetre
+  const double radius = std::max(0.5, pen * scale / 2);
+  // Each pixel's ink, the most any stroke gives it: a stroke's coverage falls from 1 to
+  // 0 across the pixel at its edge.
+  std::vector<float> ink(size_t(w) * size_t(h));
+  const auto stroke = [&](Point2 a, Point2 b) {
+    a = {a.x * scale - 0.5, a.y * scale - 0.5}, b = {b.x * scale - 0.5, b.y * scale - 0.5}; // pixel centres at integers
+    const int32_t x0 = std::max(0, int32_t(std::floor(std::min(a.x, b.x) - radius - 1)));
+    const int32_t x1 = std::min(w - 1, int32_t(std::ceil(std::max(a.x, b.x) + radius + 1)));
+    const int32_t y0 = std::max(0, int32_t(std::floor(std::min(a.y, b.y) - radius - 1)));
+    const int32_t y1 = std::min(h - 1, int32_t(std::ceil(std::max(a.y, b.y) + radius + 1)));
+    for (int32_t y = y0; y <= y1; ++y)
+      for (int32_t x = x0; x <= x1; ++x) {
+        const float cover = float(std::clamp(radius + 0.5 - to_segment({double(x), double(y)}, a, b), 0.0, 1.0));
+        float& pixel = ink[size_t(y) * size_t(w) + size_t(x)];
+        pixel = std::max(pixel, cover);
+      }
+  };
+  for (int32_t k = 0; k < d.size(); ++k) {
+    const int32_t first = d.start[size_t(k)], last = d.start[size_t(k) + 1] - 1;
+    for (int32_t i = first; i < last; ++i) stroke(d.points[size_t(i)], d.points[size_t(i) + 1]);
+    if (d.closed[size_t(k)] && last > first) stroke(d.points[size_t(last)], d.points[size_t(first)]);
+  }
+  Image image{.width = w, .height = h};
+  image.rgba.resize(ink.size() * 4);
+  for (size_t i = 0; i < ink.size(); ++i) {
+    const auto grey = uint8_t(std::lround(255 * (1 - ink[i])));
+    image.rgba[4 * i] = image.rgba[4 * i + 1] = image.rgba[4 * i + 2] = grey;
+    image.rgba[4 * i + 3] = 255;
+  }
+  return image;
 }
 
 void write_drawing(const Drawing& drawing, double pen, const std::filesystem::path& path) {

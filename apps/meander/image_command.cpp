@@ -1,0 +1,100 @@
+#include "cli_support.h"
+#include "commands.h"
+
+#include "meander/drawing.h"
+#include "meander/error.h"
+#include "meander/io.h"
+#include "meander/jobs.h"
+#include "meander/parameters.h"
+#include "meander/render.h"
+#include "meander/textured_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <memory>
+
+namespace meander::cli {
+
+namespace {
+
+struct ImageArgs {
+  std::string input, output, duotone, png, size = "1600x1200";
+  ImageJob job;
+  bool verbose = false;
+};
+
+// The PNG's width: the largest picture of the sheet's proportions inside --size.
+int32_t picture_width(const std::string& size, const Paper& paper) {
+  int32_t width = 0, height = 0;
+  parse_size(size, width, height);
+  return std::max<int32_t>(1, int32_t(std::min<double>(width, std::floor(height * paper.width / paper.height))));
+}
+
+void run_image(const ImageArgs& a) {
+  check_parameters(a.job);
+  require_output_path(a.output, {".svg", ".obj", ".ply", ".png"}, "-o");
+  if (!a.duotone.empty()) require_output_path(a.duotone, {".svg"}, "--duotone");
+  if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
+  int32_t unused_width = 0, unused_height = 0;
+  parse_size(a.size, unused_width, unused_height);
+
+  StageLog log(a.verbose);
+  const Texture picture = read_texture(a.input, a.job.max_pixels);
+  log.lap("read");
+  ImageJob job = a.job;
+  job.cycle.count_leaves = a.verbose;
+  StageTimes times;
+  const LinePicture result = [&] {
+    try {
+      return make_line_picture(picture, job, &times);
+    } catch (const InputError& e) {
+      throw InputError(a.input + ": " + e.what());
+    }
+  }();
+  for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.note(std::to_string(result.cells) + " cells");
+  log.note(leaves_note(result.leaves));
+
+  const Drawing& drawing = result.drawing;
+  const auto write_png_of = [&](const std::string& path) {
+    write_png(drawing_image(drawing, job.pen, picture_width(a.size, drawing.paper)), path);
+  };
+  std::string extension = std::filesystem::path(a.output).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension == ".svg") {
+    write_drawing(drawing, job.pen, a.output);
+  } else if (extension == ".png") {
+    write_png_of(a.output);
+  } else { // a curve file, in millimetres with y up as 3D programs show it
+    Polylines curve = result.curve;
+    for (Vec3& p : curve.points) p.y = float(drawing.paper.height - p.y);
+    write_polylines(curve, a.output, {.millimetres = true});
+  }
+  if (!a.duotone.empty()) write_bytes(a.duotone, line_picture_duotone_svg(result, job));
+  if (!a.png.empty()) write_png_of(a.png);
+  log.lap("write");
+  std::fprintf(stderr, "%s: one closed line on %gx%g mm, %.0f mm long\n", a.output.c_str(), drawing.paper.width,
+               drawing.paper.height, drawing.drawn_length);
+}
+
+} // namespace
+
+Command add_image_command(CLI::App& parent) {
+  auto args = std::make_shared<ImageArgs>();
+  CLI::App* app = parent.add_subcommand(
+      "image", "Draw a picture with one closed line that never crosses itself, denser where the picture is darker");
+  app->add_option("PICTURE", args->input, "the picture (.png .jpg .bmp .tga .gif), read as its luma")->required();
+  app->add_option("-o,--output", args->output,
+                  "the drawing (.svg), its line as a curve file in millimetres (.obj .ply), or a picture of it (.png)")
+      ->required();
+  app->add_option("--duotone", args->duotone, "also write the two regions the line bounds, filled in --colors (.svg)");
+  app->add_option("--png", args->png, "also write a picture of the drawing (.png)");
+  app->add_option("--size", args->size, "the .png's largest size WxH in pixels (the sheet's proportions kept)")
+      ->capture_default_str();
+  add_parameters(*app, args->job);
+  app->add_flag("-v,--verbose", args->verbose, "print the time each stage took");
+  return {app, [args] { run_image(*args); }};
+}
+
+} // namespace meander::cli
