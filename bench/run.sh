@@ -205,6 +205,26 @@ echo "|---|---:|---|"
 printf '| hidden-line drawing of a 1M-segment curve <= 2 s | %.2f s | %s |\n' "$draw_seconds" "$(verdict "$draw_seconds" 2)"
 rm -f "$scratch/drawing.svg" "$scratch/draw_ms"
 
+# A picture drawn with one line (docs/drawing.md, Speed): a 1000x1000 rendering of a
+# pretzel on grey to an A4 single-line SVG at --spacing 0.37 mm (about 200,000 segments),
+# the whole command from reading the PNG to the written SVG, median of $cli_runs.
+echo
+echo "## Line picture: \`meander image scene_1mp.png -o image.svg --spacing 0.37\` (whole command, median of $cli_runs)"
+echo
+generate pretzel --faces 20000 -o "$scratch/pretzel_20k.ply" > /dev/null
+"$meander" render "$scratch/pretzel_20k.ply" -o "$scratch/scene_1mp.png" --size 1000x1000 --view front --background '#707080' > /dev/null 2>&1
+for ((i = 0; i < cli_runs; ++i)); do
+  start=$(date +%s%N)
+  "$meander" image "$scratch/scene_1mp.png" -o "$scratch/image.svg" --spacing 0.37 2> /dev/null
+  echo $((($(date +%s%N) - start) / 1000000))
+done > "$scratch/image_ms"
+image_seconds=$(median < "$scratch/image_ms" | awk '{ print $1 / 1000 }')
+segments=$(grep -o ' L' "$scratch/image.svg" | wc -l)
+echo "| target | measured | met |"
+echo "|---|---:|---|"
+printf '| a 1-megapixel picture to a single-line SVG (%d segments) <= 1 s | %.2f s | %s |\n' "$segments" "$image_seconds" "$(verdict "$image_seconds" 1)"
+rm -f "$scratch/image.svg" "$scratch/image_ms"
+
 # The Python package's overhead over the C++ call (docs/python.md): the same curve, median
 # of $runs each, in the same run.
 echo

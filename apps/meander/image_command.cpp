@@ -53,6 +53,7 @@ void run_image(const ImageArgs& a) {
     }
   }();
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
+  log.restart();
   log.note(std::to_string(result.cells) + " cells");
   log.note(leaves_note(result.leaves));
 

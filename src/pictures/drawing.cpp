@@ -105,41 +105,48 @@ double mean_edge(const PolygonMesh& m) {
   return m.num_corners() > 0 ? length / m.num_corners() : 0;
 }
 
-double distance(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+// Squared, and not through std::hypot, whose care for overflow took a fifth of a line
+// picture's time: millimetres on a sheet do not overflow.
+double distance2(Point2 a, Point2 b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); }
+double distance(Point2 a, Point2 b) { return std::sqrt(distance2(a, b)); }
 
-// From p to the segment a-b.
-double to_segment(Point2 p, Point2 a, Point2 b) {
+// From p to the segment a-b, squared.
+double to_segment2(Point2 p, Point2 a, Point2 b) {
   const double dx = b.x - a.x, dy = b.y - a.y, length2 = dx * dx + dy * dy;
   const double t = length2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / length2, 0.0, 1.0) : 0.0;
-  return distance(p, {a.x + t * dx, a.y + t * dy});
+  return distance2(p, {a.x + t * dx, a.y + t * dy});
 }
 
-// Douglas-Peucker: the points of `path` that keep it within `tolerance` (its ends kept;
-// a closed path is simplified as the open one back to its first point).
-std::vector<Point2> simplified(const std::vector<Point2>& path, bool closed, double tolerance) {
-  std::vector<Point2> line = path;
-  if (closed && !line.empty()) line.push_back(line.front());
-  const size_t n = line.size();
-  if (n < 3) return path;
-  std::vector<uint8_t> keep(n, 0);
-  keep[0] = keep[n - 1] = 1;
-  std::vector<std::pair<size_t, size_t>> stack{{0, n - 1}};
+// Douglas-Peucker: of the n points at(0) .. at(n - 1), those that keep the path within
+// `tolerance` (its ends kept; a closed path is simplified as the open one back to its
+// first point). Through `at`, so that a curve's points are read where they are.
+template <class At> std::vector<Point2> simplified(size_t n, bool closed, double tolerance, At&& at) {
+  const size_t m = closed && n > 0 ? n + 1 : n; // point n of a closed path is its first
+  const auto point = [&](size_t i) { return at(i == n ? 0 : i); };
+  std::vector<Point2> out;
+  if (m < 3) {
+    for (size_t i = 0; i < n; ++i) out.push_back(at(i));
+    return out;
+  }
+  std::vector<uint8_t> keep(m, 0);
+  keep[0] = keep[m - 1] = 1;
+  std::vector<std::pair<size_t, size_t>> stack{{0, m - 1}};
   while (!stack.empty()) {
     const auto [a, b] = stack.back();
     stack.pop_back();
     double farthest = -1;
-    size_t at = a;
+    size_t far = a;
+    const Point2 pa = point(a), pb = point(b);
     for (size_t i = a + 1; i < b; ++i)
-      if (const double d = to_segment(line[i], line[a], line[b]); d > farthest) farthest = d, at = i;
-    if (farthest > tolerance) {
-      keep[at] = 1;
-      stack.emplace_back(a, at);
-      stack.emplace_back(at, b);
+      if (const double d = to_segment2(point(i), pa, pb); d > farthest) farthest = d, far = i;
+    if (farthest > tolerance * tolerance) {
+      keep[far] = 1;
+      stack.emplace_back(a, far);
+      stack.emplace_back(far, b);
     }
   }
-  std::vector<Point2> out;
-  for (size_t i = 0; i < n - (closed ? 1 : 0); ++i)
-    if (keep[i]) out.push_back(line[i]);
+  for (size_t i = 0; i < n; ++i)
+    if (keep[i]) out.push_back(at(i));
   return out;
 }
 
@@ -188,9 +195,12 @@ void check_sheet(const Paper& paper, double pen) {
   if (!(pen > 0 && std::isfinite(pen))) throw UsageError("pen: expected a positive width in millimetres");
 }
 
-// Paths on the sheet as the drawing: only the points the pen shows, no dots, in order.
+// The points of a path the pen shows: those more than a twentieth of its width off the
+// line through the points kept round them.
+double pen_tolerance(double pen) { return pen / 20; }
+
+// Paths on the sheet, simplified for the pen, as the drawing: no dots, in order.
 Drawing laid_out(std::vector<Path> paths, const Paper& paper, double pen, int32_t layers) {
-  tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) { paths[i].points = simplified(paths[i].points, paths[i].closed, pen / 20); });
   // A path shorter than the pen is wide would be a dot: a glimpse of the curve at a
   // silhouette.
   std::erase_if(paths, [&](const Path& p) {
@@ -304,7 +314,10 @@ Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const 
   const double offset_x = paper.margin + (area_width - extent_x * fit) / 2 - lo_x * fit;
   const double offset_y = paper.margin + (area_height - extent_y * fit) / 2 - lo_y * fit;
   tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) {
-    for (Point2& q : paths[i].points) q = {offset_x + q.x * fit, offset_y + q.y * fit};
+    const std::vector<Point2>& p = paths[i].points;
+    paths[i].points = simplified(p.size(), paths[i].closed, pen_tolerance(options.pen), [&](size_t k) {
+      return Point2{offset_x + p[k].x * fit, offset_y + p[k].y * fit};
+    });
   });
   return laid_out(std::move(paths), paper, options.pen, curves.size());
 }
@@ -312,10 +325,12 @@ Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const 
 Drawing sheet_drawing(const Polylines& curves, const Paper& paper, double pen) {
   check_sheet(paper, pen);
   std::vector<Path> paths(size_t(curves.size()));
-  for (int32_t k = 0; k < curves.size(); ++k) {
-    paths[size_t(k)] = {.closed = curves.closed(k), .layer = k};
-    for (const Vec3& p : curves.polyline(k)) paths[size_t(k)].points.push_back({p.x, p.y});
-  }
+  tbb::parallel_for(int32_t(0), curves.size(), [&](int32_t k) {
+    const auto p = curves.polyline(k);
+    paths[size_t(k)] = {.points = simplified(p.size(), curves.closed(k), pen_tolerance(pen), [&](size_t i) { return Point2{p[i].x, p[i].y}; }),
+                        .closed = curves.closed(k),
+                        .layer = k};
+  });
   return laid_out(std::move(paths), paper, pen, curves.size());
 }
 
@@ -324,8 +339,8 @@ namespace {
 // Millimetres to 1/1000, without the trailing zeros that say nothing ("12.5", "3").
 void put(std::string& out, double value) {
   char number[64];
-  std::snprintf(number, sizeof number, "%.3f", value);
-  std::string_view text = number;
+  const auto [end, error] = std::to_chars(number, number + sizeof number, value, std::chars_format::fixed, 3);
+  std::string_view text(number, error == std::errc() ? size_t(end - number) : 0);
   while (text.find('.') != std::string_view::npos && (text.back() == '0' || text.back() == '.')) {
     const bool dot = text.back() == '.';
     text.remove_suffix(1);
@@ -369,6 +384,7 @@ std::string hex(Rgb c) {
 
 std::string drawing_svg(const Drawing& d, double pen) {
   std::string out;
+  out.reserve(d.points.size() * 18 + 1024); // " L123.456 78.901"
   put_header(out, d.paper);
   for (int32_t k = 0, path = 0; k < d.layers; ++k) {
     if (path == d.size() || d.layer[size_t(path)] != k) continue;
@@ -427,7 +443,7 @@ Image drawing_image(const Drawing& d, double pen, int32_t width) {
     const int32_t y1 = std::min(h - 1, int32_t(std::ceil(std::max(a.y, b.y) + radius + 1)));
     for (int32_t y = y0; y <= y1; ++y)
       for (int32_t x = x0; x <= x1; ++x) {
-        const float cover = float(std::clamp(radius + 0.5 - to_segment({double(x), double(y)}, a, b), 0.0, 1.0));
+        const float cover = float(std::clamp(radius + 0.5 - std::sqrt(to_segment2({double(x), double(y)}, a, b)), 0.0, 1.0));
         float& pixel = ink[size_t(y) * size_t(w) + size_t(x)];
         pixel = std::max(pixel, cover);
       }
