@@ -221,17 +221,20 @@ template <class Job> void set_parameters(Job& job, const py::kwargs& values, con
   for (auto [key, value] : values) given.emplace_back(py::str(key), value);
   // The model size first: the other lengths' units need it.
   std::stable_partition(given.begin(), given.end(), [](const auto& entry) { return entry.first == parameters::model_size.name; });
-  const std::optional<double>& model_size = [&]() -> const std::optional<double>& {
-    if constexpr (std::is_same_v<Job, WireJob>) return job.curve.model_size;
-    else return job.model_size;
-  }();
+  // Whether lengths may carry units: with a model size, and always in a picture's job,
+  // whose lengths are millimetres on paper.
+  const auto sized = [&] {
+    if constexpr (std::is_same_v<Job, WireJob>) return job.curve.model_size.has_value();
+    else if constexpr (std::is_same_v<Job, ImageJob>) return true;
+    else return job.model_size.has_value();
+  };
   for (const auto& [key, value] : given) {
     bool known = false;
     visit_parameters(job, [&](const Parameter& p, auto& field) {
       if (p.name != key) return;
       known = true;
       const std::string text = value_text<std::decay_t<decltype(field)>>(p, value);
-      check_unit(p, text, model_size.has_value(), parameters::model_size.name);
+      check_unit(p, text, sized(), parameters::model_size.name);
       set_parameter(p, text, field);
     });
     if (!known) throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + key + "'");
@@ -391,6 +394,20 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
 // A length on the paper: millimetres, or text with its unit ("10mm", "0.5in"), as the CLI reads it.
 double paper_length(const char* name, py::handle value) { return millimetres(name, std::string(py::str(value))); }
 
+// A drawing's paths: (N, 2) arrays in millimetres, a closed one ending on its first point.
+py::list drawing_paths(const Drawing& drawing) {
+  py::list paths;
+  for (int32_t k = 0; k < drawing.size(); ++k) {
+    std::vector<double> xy;
+    for (int32_t i = drawing.start[size_t(k)]; i < drawing.start[size_t(k) + 1]; ++i)
+      xy.insert(xy.end(), {drawing.points[size_t(i)].x, drawing.points[size_t(i)].y});
+    if (drawing.closed[size_t(k)]) xy.insert(xy.end(), {xy[0], xy[1]});
+    const py::ssize_t n = py::ssize_t(xy.size() / 2);
+    paths.append(owned<double>(std::move(xy), {n, 2}));
+  }
+  return paths;
+}
+
 // The drawing of a mesh's curve (made with the curve's parameters, hidden by its surface)
 // or of curves (hidden by `occluder`, if given): (paths, svg).
 py::tuple draw(py::handle what, py::handle occluder, const std::string& view, bool fit, py::handle camera,
@@ -426,16 +443,44 @@ py::tuple draw(py::handle what, py::handle occluder, const std::string& view, bo
     if (!occluder.is_none()) surface = occluder.cast<const Mesh&>().mesh;
   }
   Drawing drawing = run_job(py::none(), [&](Progress&) { return draw_curves(curves, surface, options); });
-  py::list paths;
-  for (int32_t k = 0; k < drawing.size(); ++k) {
-    std::vector<double> xy;
-    for (int32_t i = drawing.start[size_t(k)]; i < drawing.start[size_t(k) + 1]; ++i)
-      xy.insert(xy.end(), {drawing.points[size_t(i)].x, drawing.points[size_t(i)].y});
-    if (drawing.closed[size_t(k)]) xy.insert(xy.end(), {xy[0], xy[1]});
-    const py::ssize_t n = py::ssize_t(xy.size() / 2);
-    paths.append(owned<double>(std::move(xy), {n, 2}));
-  }
-  return py::make_tuple(paths, drawing_svg(drawing, options.pen));
+  return py::make_tuple(drawing_paths(drawing), drawing_svg(drawing, options.pen));
+}
+
+// A picture from a file's path or from an (H, W), (H, W, 3) or (H, W, 4) array of bytes,
+// or of numbers in 0..1.
+Texture picture_from(py::handle picture, int64_t max_pixels) {
+  if (py::isinstance<py::str>(picture) || py::hasattr(picture, "__fspath__"))
+    return read_texture(picture.cast<std::filesystem::path>(), max_pixels);
+  const py::array array = as_array(picture, "picture");
+  const py::ssize_t channels = array.ndim() == 2 ? 1 : array.ndim() == 3 ? array.shape(2) : 0;
+  if (channels != 1 && channels != 3 && channels != 4)
+    throw py::value_error("picture: expected an (H, W), (H, W, 3) or (H, W, 4) array, or a file's path");
+  const py::ssize_t height = array.shape(0), width = array.shape(1);
+  if (max_pixels > 0 && int64_t(width) * height > max_pixels)
+    throw py::value_error("picture: " + std::to_string(width) + "x" + std::to_string(height) + " pixels, more than the " +
+                          std::to_string(max_pixels) + " allowed");
+  // Bytes as they are; numbers in 0..1 scaled to bytes.
+  const bool fraction = array.dtype().kind() == 'f';
+  const auto numbers = py::array_t<double, py::array::forcecast | py::array::c_style>(array);
+  const double* in = numbers.data();
+  Texture t{.width = int32_t(width), .height = int32_t(height)};
+  t.rgba.resize(size_t(width) * size_t(height) * 4, 255);
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
+    for (size_t c = 0; c < (channels == 1 ? 3 : size_t(channels)); ++c) {
+      const double v = in[i * size_t(channels) + (channels == 1 ? 0 : c)];
+      t.rgba[4 * i + c] = uint8_t(std::lround(std::clamp(fraction ? v * 255 : v, 0.0, 255.0)));
+    }
+  return t;
+}
+
+// A picture drawn with one closed line, as `meander image`: (path, svg, duotone svg).
+py::tuple image(py::handle picture, py::handle progress, const py::kwargs& params) {
+  ImageJob job;
+  set_parameters(job, params, "image");
+  check_parameters(job);
+  const Texture pixels = picture_from(picture, job.max_pixels);
+  const LinePicture drawn = run_job(progress, [&](Progress& p) { return make_line_picture(pixels, job, nullptr, &p); });
+  return py::make_tuple(drawing_paths(drawn.drawing), drawing_svg(drawn.drawing, job.pen), line_picture_duotone_svg(drawn, job));
 }
 
 // A textured mesh from the arrays duotone() returns.
@@ -499,6 +544,7 @@ template <class Job> py::list parameter_list() {
                        : std::is_floating_point_v<T>              ? "number"
                        : std::is_same_v<T, std::optional<double>> ? "number or name"
                        : std::is_enum_v<T>                        ? "name"
+                       : std::is_same_v<T, Paper>                 ? "paper"
                                                                   : "colors";
     py::dict entry("name"_a = std::string(p.name), "help"_a = std::string(p.help), "default"_a = parameter_text(p, value),
                    "type"_a = type);
@@ -618,6 +664,14 @@ PYBIND11_MODULE(_meander, m) {
         "one ending on its first point; svg: the SVG text. camera: (eye, target, up, vertical field of view in degrees) in "
         "place of view and fit. paper: A3, A4, A5, letter, legal or WIDTHxHEIGHT (mm); margin and pen in millimetres, or "
         "text with a unit.");
+  m.def("image", &image, "picture"_a, py::kw_only(), "progress"_a = py::none(),
+        "A picture drawn with one closed line that never crosses itself, as `meander image`: (paths, svg, duotone_svg). "
+        "picture: a file's path, or an (H, W), (H, W, 3) or (H, W, 4) array of bytes or of numbers in 0..1. paths: the "
+        "line as one (N, 2) float64 array in millimetres from the sheet's top-left corner (y down), ending on its first "
+        "point; svg: the drawing; duotone_svg: the two regions it bounds in the two colors.\n\n"
+        "Parameters are the CLI's (`meander image --help`, meander.parameters('image')): paper, margin, width, pen, "
+        "spacing, max_spacing, gamma, invert, tree, branches, seed, smooth, samples, max_pixels, colors; lengths in "
+        "millimetres or text with a unit.");
   m.def("render", &render_picture, py::kw_only(), "meshes"_a = py::tuple(), "curves"_a = py::none(), "occluder"_a = py::none(),
         "size"_a = "1600x1200", "view"_a = "iso", "background"_a = "white", "samples"_a = 4, "curve_width"_a = 0.0,
         "curve_style"_a = "tube", "occluder_style"_a = "hidden", "fit"_a = false,
@@ -664,10 +718,11 @@ PYBIND11_MODULE(_meander, m) {
         if (job == "curve") return parameter_list<CurveJob>();
         if (job == "wire") return parameter_list<WireJob>();
         if (job == "duotone") return parameter_list<DuotoneJob>();
-        throw py::value_error("job: unknown value '" + job + "' (expected curve, wire or duotone)");
+        if (job == "image") return parameter_list<ImageJob>();
+        throw py::value_error("job: unknown value '" + job + "' (expected curve, wire, duotone or image)");
       },
       "job"_a,
       "The job's parameters as the CLI and the studio describe them: dicts of name, help, default (as text), type "
-      "(boolean, integer, number, name, 'number or name' (a number, or its one choice for none), colors), min, max, "
+      "(boolean, integer, number, name, 'number or name' (a number, or its one choice for none), colors, paper), min, max, "
       "choices, and whether it is a length");
 }

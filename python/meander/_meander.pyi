@@ -76,6 +76,10 @@ def draw(what: Mesh | Curves | Float32Array, *, occluder: Mesh | None = None, vi
          progress: Progress | None = None, **curve_parameters: Any) -> tuple[list[npt.NDArray[np.float64]], str]:
     """A pen plotter's drawing, as `meander draw`: (paths in millimetres, the SVG text)."""
 
+def image(picture: Path | npt.ArrayLike, *, progress: Progress | None = None,
+          **parameters: Any) -> tuple[list[npt.NDArray[np.float64]], str, str]:
+    """A picture drawn with one closed line, as `meander image`: (paths in millimetres, the SVG, the duotone SVG)."""
+
 def render(*, meshes: Mesh | Sequence[Mesh] = (), curves: Curves | Float32Array | None = None,
            occluder: Mesh | None = None, size: str = "1600x1200", view: str = "iso", background: str = "white",
            samples: int = 4, curve_width: float = 0.0, curve_style: Literal["tube", "ribbon"] = "tube",

@@ -333,6 +333,27 @@ def test_draw_makes_the_command_lines_drawing(sphere, cli, tmp_path):
     assert points.min(axis=0).tolist() >= [10 - 1e-9, 10 - 1e-9] and (points.max(axis=0) <= [138 + 1e-9, 200 + 1e-9]).all()
 
 
+def test_image_makes_the_command_lines_drawing_from_a_file_or_an_array(cli, tmp_path):
+    picture = meander.render(meshes=meander.generate("torus", 2000), size="120x90", view="top")
+    png, svg_path, duotone_path = tmp_path / "torus.png", tmp_path / "torus.svg", tmp_path / "torus.duotone.svg"
+    meander.write_png(png, picture)
+    subprocess.run([cli, "image", str(png), "-o", str(svg_path), "--duotone", str(duotone_path), "--paper", "A5",
+                    "--spacing", "0.8mm", "--seed", "4"], check=True, capture_output=True)
+    paths, svg, duotone = meander.image(png, paper="A5", spacing="0.8mm", seed=4)
+    assert svg == svg_path.read_text() and duotone == duotone_path.read_text()
+    assert meander.image(picture, paper="A5", spacing=0.8, seed=4)[1] == svg
+    assert meander.image(picture / 255.0, paper="A5", spacing=0.8, seed=4)[1] == svg  # numbers in 0..1
+    assert len(paths) == 1 and np.array_equal(paths[0][0], paths[0][-1])  # one closed line
+    assert paths[0].min() >= 10 and (paths[0].max(axis=0) <= [200, 138]).all()  # inside the margins of A5 turned
+    assert [p["name"] for p in meander.parameters("image")][:4] == ["paper", "margin", "width", "pen"]
+    with pytest.raises(ValueError, match="more than the 100 allowed"):
+        meander.image(picture, max_pixels=100)
+    with pytest.raises(ValueError, match=r"expected an \(H, W\)"):
+        meander.image(np.zeros((4, 4, 2)))
+    with pytest.raises(ValueError, match="1x1 pixels"):
+        meander.image(np.zeros((1, 1)))
+
+
 def test_curves_behind_their_occluder_are_not_drawn(sphere):
     t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
     far = np.stack([0.8 * np.cos(t), 0.8 * np.sin(t), np.full_like(t, -0.6)], axis=1)
