@@ -26,9 +26,9 @@ struct ToneOptions {
 // The cells of the quadtree over `area` (where the picture lies on the sheet) as polygons (z = 0): leaves of a grid of nearly
 // square roots, each cell's corners and the midpoints its finer neighbours put on its
 // sides (2:1 balanced, so at most one a side), all in one orientation; a connected disk.
-// A cell splits where the picture's mean ink over it needs more than the cell gives,
-// by the fraction needed against an 8x8 Bayer threshold per level, so that middle tones
-// come out as a mixture of two sizes whose ink is right on average.
+// A cell splits where the picture's mean ink over it needs more than the cell gives: the
+// part needed is diffused over each level's cells (Floyd-Steinberg), so that middle tones
+// come out as an even mixture of two sizes whose ink is right on average.
 // Throws ParameterError for options out of range and UsageError when the finest cells
 // would number more than `max_cells`. Deterministic; O(pixels + finest cells * levels).
 PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOptions& options, int64_t max_cells = int64_t(1) << 26);

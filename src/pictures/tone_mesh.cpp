@@ -24,11 +24,6 @@ constexpr double kPassesPerCell = 1.61;
 // of the tone's from black to white (tests/image_test.cpp holds it to 5%).
 constexpr double kSeams = 0.65;
 
-constexpr uint8_t kBayer[8][8] = {{0, 32, 8, 40, 2, 34, 10, 42},  {48, 16, 56, 24, 50, 18, 58, 26},
-                                  {12, 44, 4, 36, 14, 46, 6, 38},  {60, 28, 52, 20, 62, 30, 54, 22},
-                                  {3, 35, 11, 43, 1, 33, 9, 41},   {51, 19, 59, 27, 49, 17, 57, 25},
-                                  {15, 47, 7, 39, 13, 45, 5, 37},  {63, 31, 55, 23, 61, 29, 53, 21}};
-
 // The darkness of each pixel, 0 white .. 1 black, by its 16-bit luma over white.
 std::vector<float> darkness_table(const ToneOptions& options) {
   std::vector<float> table(65281);
@@ -119,26 +114,47 @@ PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOption
       }
   }
 
-  // A cell of level k splits when its ink density (passes per millimetre, the inverse of
-  // the gap) falls short of the picture's by more than its Bayer threshold's part of
-  // what splitting adds (the children's density is twice the cell's). Where a part p of
-  // the cells split, the line winds more along the seams between the two sizes: measured,
-  // the ink is the cells' times 1 + p + kSeams p (1 - p), which p is solved from.
+  // A cell of level k should split where its ink density (passes per millimetre, the
+  // gap's inverse) falls short of the picture's, by the part of what splitting adds that
+  // it lacks (the children's density is twice the cell's). Where a part p of the cells
+  // split, the line winds more along the seams between the two sizes: measured, the ink is
+  // the cells' times 1 + p + kSeams p (1 - p), which p is solved from. Each level's cells
+  // then split or not by error diffusion of p (Floyd-Steinberg, serpentine), so that a
+  // middle tone is an even, unpatterned mixture of two sizes with the right ink.
   const double cell_x = area.width / nx, cell_y = area.height / ny;
   const double finest_gap = std::sqrt(cell_x * cell_y) / kPassesPerCell;
-  const auto splits = [&](int k, int32_t x, int32_t y) {
-    const double d = mean[size_t(k)][size_t(y) * size_t(roots_x << k) + size_t(x)];
-    const double wanted = 1 / options.max_spacing + d * (1 / options.spacing - 1 / options.max_spacing);
+  std::vector<std::vector<uint8_t>> split(static_cast<size_t>(levels));
+  for (int k = 0; k < levels; ++k) {
+    const int32_t cx = roots_x << k, cy = roots_y << k;
     const double has = 1 / (finest_gap * double(1 << (levels - k)));
-    const double more = (wanted - has) / has;
-    const double part = more >= 1 ? 1 : (1 + kSeams - std::sqrt((1 + kSeams) * (1 + kSeams) - 4 * kSeams * more)) / (2 * kSeams);
-    return part > (kBayer[y & 7][x & 7] + 0.5) / 64;
-  };
+    split[size_t(k)].resize(size_t(cx) * size_t(cy));
+    std::vector<double> error(size_t(cx) + 2), below(size_t(cx) + 2); // one cell of slack at each end
+    for (int32_t y = 0; y < cy; ++y) {
+      const int step = y % 2 == 0 ? 1 : -1;
+      for (int32_t i = 0; i < cx; ++i) {
+        const int32_t x = step > 0 ? i : cx - 1 - i;
+        const size_t cell = size_t(y) * size_t(cx) + size_t(x);
+        const double wanted = 1 / options.max_spacing + mean[size_t(k)][cell] * (1 / options.spacing - 1 / options.max_spacing);
+        const double more = (wanted - has) / has;
+        const double part =
+            more >= 1 ? 1 : std::max(0.0, (1 + kSeams - std::sqrt((1 + kSeams) * (1 + kSeams) - 4 * kSeams * more)) / (2 * kSeams));
+        const double value = part + error[size_t(x + 1)];
+        split[size_t(k)][cell] = value > 0.5;
+        const double e = value - split[size_t(k)][cell];
+        error[size_t(x + 1 + step)] += e * 7 / 16;
+        below[size_t(x + 1 - step)] += e * 3 / 16;
+        below[size_t(x + 1)] += e * 5 / 16;
+        below[size_t(x + 1 + step)] += e / 16;
+      }
+      std::swap(error, below);
+      std::fill(below.begin(), below.end(), 0.0);
+    }
+  }
   std::vector<uint8_t> level(size_t(nx) * size_t(ny));
   tbb::parallel_for(int32_t(0), ny, [&](int32_t y) {
     for (int32_t x = 0; x < nx; ++x) {
       int k = 0;
-      while (k < levels && splits(k, x >> (levels - k), y >> (levels - k))) ++k;
+      while (k < levels && split[size_t(k)][size_t(y >> (levels - k)) * size_t(roots_x << k) + size_t(x >> (levels - k))]) ++k;
       level[size_t(y) * size_t(nx) + size_t(x)] = uint8_t(k);
     }
   });
