@@ -18,6 +18,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -688,10 +689,16 @@ PYBIND11_MODULE(_meander, m) {
   m.def(
       "write_curves",
       [](const std::filesystem::path& path, py::handle curves, bool millimetres) {
-        write_polylines(curves_from(curves), path, {.millimetres = millimetres});
+        // An SVG is the curves' drawing from the front (curve_svg), as the CLI's.
+        const Polylines c = curves_from(curves);
+        std::string extension = path.extension().string();
+        std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char x) { return char(std::tolower(x)); });
+        if (extension == ".svg") write_bytes(path, curve_svg(c, {}, millimetres));
+        else write_polylines(c, path);
       },
       "path"_a, "curves"_a, py::kw_only(), "millimetres"_a = false,
-      "Writes closed curves (a list of (N, 3) arrays): .obj .ply .json .svg (millimetres: an SVG at true size)");
+      "Writes closed curves (a list of (N, 3) arrays): .obj .ply .json, or .svg: their plotter drawing seen from the front "
+      "(millimetres: at true size, else fitted to an A4 sheet)");
   m.def(
       "write_duotone",
       [](const std::filesystem::path& path, py::handle vertices, py::handle faces, py::handle uv, py::handle texture,

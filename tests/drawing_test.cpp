@@ -153,6 +153,19 @@ TEST(CliDraw, ACurveFileIsDrawnHiddenByItsOccluder) {
   EXPECT_NE(r.err.find(": 0 paths "), std::string::npos) << r.err;
 }
 
+// One SVG writer: a curve's SVG is the drawing `meander draw --view front` makes of it.
+TEST(CliDraw, ACurvesSvgIsItsDrawingFromTheFront) {
+  const auto dir = output_dir();
+  const std::string mesh = (dir / "pretzel.obj").string(), curve = (dir / "c.svg").string(), drawn = (dir / "d.svg").string();
+  write_mesh(make_shape("pretzel", 3000), mesh);
+  ASSERT_EQ(run_cli({"curve", mesh, "-o", curve, "--seed", "5"}).exit_code, 0);
+  ASSERT_EQ(run_cli({"draw", mesh, "-o", drawn, "--seed", "5", "--view", "front"}).exit_code, 0);
+  const std::string text = read_file(curve);
+  EXPECT_EQ(text, read_file(drawn));
+  int layers = 0;
+  EXPECT_GT(read_svg_paths(text, layers).size(), 1u); // cut where the surface hides it
+}
+
 TEST(CliDraw, BadOptionsAreUsageErrorsThatLeaveNoFile) {
   const auto dir = output_dir();
   const std::string mesh = (dir / "s.obj").string(), svg = (dir / "s.svg").string();

@@ -271,7 +271,9 @@ TEST(IoWrite, UnknownExtensionIsAUsageErrorAndCreatesNothing) {
   EXPECT_EQ(test::message_of<UsageError>([&] { write_mesh(mixed_mesh(), dir / "m"); }),
             (dir / "m").string() + ": unknown mesh format '' (Meander reads .obj, .ply, .stl, .off, .gltf and .glb, and writes those and .3mf)");
   EXPECT_EQ(test::message_of<UsageError>([&] { write_polylines(Polylines{}, dir / "c.txt"); }),
-            (dir / "c.txt").string() + ": unknown curve format '.txt' (expected .obj, .ply, .json or .svg)");
+            (dir / "c.txt").string() + ": unknown curve format '.txt' (expected .obj, .ply or .json)");
+  EXPECT_EQ(test::message_of<UsageError>([&] { write_polylines(Polylines{}, dir / "c.svg"); }),
+            (dir / "c.svg").string() + ": unknown curve format '.svg' (expected .obj, .ply or .json; an SVG is a drawing (drawing.h))");
   EXPECT_TRUE(folder_listing(dir).empty());
 }
 
@@ -512,20 +514,6 @@ TEST(IoPolylines, JsonListsThePoints) {
   EXPECT_EQ(json["polylines"][1]["points"][1], nlohmann::json::parse("[3,2,2]"));
   write_polylines(Polylines{}, path);
   EXPECT_EQ(nlohmann::json::parse(test::read_file(path))["polylines"].size(), 0u);
-}
-
-TEST(IoPolylines, SvgProjectsOntoTheXyPlaneFittedToThePage) {
-  Polylines curves;
-  curves.points = {{0, 0, 3}, {2, 0, -1}, {2, 1, 0}, {0, 1, 9}};
-  curves.start = {0, 4};
-  const fs::path path = output_dir() / "c.svg";
-  write_polylines(curves, path);
-  // Width 2 maps to 960 units plus two margins of 20; y points down the page.
-  EXPECT_EQ(test::read_file(path), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000.00\" height=\"520.00\" "
-                         "viewBox=\"0 0 1000.00 520.00\">\n"
-                         "<g fill=\"none\" stroke=\"black\" stroke-width=\"1\" stroke-linejoin=\"round\">\n"
-                         "<path d=\"M20.00 500.00 L980.00 500.00 L980.00 20.00 L20.00 20.00 Z\"/>\n"
-                         "</g>\n</svg>\n");
 }
 
 } // namespace

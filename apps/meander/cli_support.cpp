@@ -12,10 +12,15 @@
 
 namespace meander::cli {
 
-void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
-                         std::string_view option) {
+std::string lowercase_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
+                         std::string_view option) {
+  const std::string ext = lowercase_extension(path);
   if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
     std::string list;
     for (std::string_view e : extensions) list += (list.empty() ? "" : ", ") + std::string(e);

@@ -22,6 +22,9 @@ namespace meander::cli {
 void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
                          std::string_view option);
 
+// The path's extension in lower case (".svg").
+std::string lowercase_extension(const std::filesystem::path& path);
+
 // The option of a parameter (parameters.h): "--texture-size" for texture_size.
 std::string option_name(std::string_view parameter);
 

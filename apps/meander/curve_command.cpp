@@ -25,19 +25,24 @@ void run_curve(const CurveArgs& a) {
   CurveJob job = a.job;
   job.max_faces = a.max_faces;
   check_parameters(job);
-  // Only the picture needs the curve's points in memory; otherwise they are sampled as
-  // the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
-  job.sample = !a.png.empty();
-  job.output = a.output;
-  job.cycle.count_leaves = a.verbose;
+  // Only the picture and the drawing need the curve's points in memory; otherwise they
+  // are sampled as the file is written (on a 10M-triangle mesh, 1.44 GB never allocated).
   require_output_path(a.output, {".obj", ".ply", ".json", ".svg"}, "-o");
+  const bool drawing = lowercase_extension(a.output) == ".svg";
+  job.sample = !a.png.empty() || drawing;
+  if (!drawing) job.output = a.output;
+  job.cycle.count_leaves = a.verbose;
   if (!a.triangles.empty()) require_output_path(a.triangles, {".obj", ".ply", ".off", ".stl"}, "--triangles");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
   const RenderOptions picture = picture_options(a.picture);
 
   StageLog log(a.verbose);
   const CurveResult result = make_input_curve(a.input, log, job, a.strict);
-  const int64_t points = result.points_written;
+  if (drawing) {
+    write_bytes(a.output, curve_svg(result, job.model_size.has_value()));
+    log.lap("draw + write");
+  }
+  const int64_t points = drawing ? int64_t(result.curves.points.size()) : result.points_written;
   if (!a.triangles.empty()) {
     write_mesh(cycle_triangles(result.quads, result.cycle), a.triangles, {.group_start = result.cycle.cycle_start});
     log.lap("write cycle");
@@ -63,7 +68,10 @@ Command add_curve_command(CLI::App& parent) {
   auto args = std::make_shared<CurveArgs>();
   CLI::App* app = parent.add_subcommand("curve", "Make the closed curve(s) that cover a mesh's surface (one per connected component)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
-  app->add_option("-o,--output", args->output, "output curve: .obj (l elements), .ply (binary edges), .json, .svg")->required();
+  app->add_option("-o,--output", args->output,
+                  "output curve: .obj (l elements), .ply (binary edges), .json, or .svg: a plotter drawing seen from the "
+                  "front, the surface hiding its back parts (meander draw chooses the view and sheet)")
+      ->required();
   add_parameters(*app, args->job);
   add_max_faces(*app, args->max_faces);
   app->add_option("--triangles", args->triangles, "also write the certificate: the triangulated quad mesh, faces in cycle order, one OBJ group per cycle");

@@ -79,10 +79,13 @@ void run_duotone(const DuotoneArgs& a) {
   if (!a.curve.empty()) curves = separating_curves(duotone, job.tiles.style);
   std::array<PolygonMesh, 2> pieces;
   if (!a.regions.empty()) pieces = duotone_regions(duotone, job.tiles.style);
+  const bool curve_drawing = lowercase_extension(a.curve) == ".svg";
+  const std::string drawing = curve_drawing ? curve_svg(curves, surface.mesh, job.model_size.has_value()) : "";
   log.lap("curve, regions");
 
   write_textured_mesh(surface, a.output, job.model_size.has_value());
-  if (!a.curve.empty()) write_polylines(curves, a.curve, {.millimetres = job.model_size.has_value()});
+  if (curve_drawing) write_bytes(a.curve, drawing);
+  else if (!a.curve.empty()) write_polylines(curves, a.curve);
   for (int k = 0; k < 2 && !a.regions.empty(); ++k) write_mesh(pieces[size_t(k)], regions[size_t(k)]);
   log.lap("write");
   std::string picture_written;

@@ -10,7 +10,6 @@
 #include "meander/textured_io.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <memory>
 
@@ -61,8 +60,7 @@ void run_image(const ImageArgs& a) {
   const auto write_png_of = [&](const std::string& path) {
     write_png(drawing_image(drawing, job.pen, picture_width(a.size, drawing.paper)), path);
   };
-  std::string extension = std::filesystem::path(a.output).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string extension = lowercase_extension(a.output);
   if (extension == ".svg") {
     write_drawing(drawing, job.pen, a.output);
   } else if (extension == ".png") {
@@ -70,7 +68,7 @@ void run_image(const ImageArgs& a) {
   } else { // a curve file, in millimetres with y up as 3D programs show it
     Polylines curve = result.curve;
     for (Vec3& p : curve.points) p.y = float(drawing.paper.height - p.y);
-    write_polylines(curve, a.output, {.millimetres = true});
+    write_polylines(curve, a.output);
   }
   if (!a.duotone.empty()) write_bytes(a.duotone, line_picture_duotone_svg(result, job));
   if (!a.png.empty()) write_png_of(a.png);

@@ -19,7 +19,7 @@ namespace meander {
 // written. Throws what cycle_curves and write_polylines throw, a bad samples before the
 // file is made.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
-                           const std::filesystem::path& path, const PolylineWriteOptions& write = {});
+                           const std::filesystem::path& path);
 
 // write_cycle_curves in two steps, so that the file is written while the cycles are
 // made: made from the quad mesh alone, the writer counts the points and, for PLY, writes
@@ -33,8 +33,7 @@ int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, co
 // finish() what the thread met, and what write_cycle_curves throws.
 class CycleCurveWriter {
 public:
-  CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path,
-                   const PolylineWriteOptions& write = {});
+  CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path);
   ~CycleCurveWriter();
   CycleCurveWriter(const CycleCurveWriter&) = delete;
   CycleCurveWriter& operator=(const CycleCurveWriter&) = delete;

@@ -34,6 +34,10 @@ struct DrawingOptions {
   // The pen's width in millimetres: the drawing keeps no more points than it shows (a
   // point within a twentieth of it of the line through its neighbours is dropped).
   double pen = 0.3;
+  // Set: millimetres on paper a unit of the curves, at the depth of the centre of their
+  // bounding box (a model sized in millimetres drawn at true size there), and the sheet is
+  // the drawing's size and the margins round it, in place of fitting the drawing to `paper`.
+  std::optional<double> scale;
 };
 
 struct Point2 {
@@ -66,7 +70,7 @@ struct Drawing {
 // half the surface's mean edge (a curve on the surface strays from it by less: smoothed,
 // it cuts a little inside across the faces), and each change from seen to hidden is placed
 // on its segment to within 1/256 of the segment. The seen parts are fitted to the sheet
-// inside its margins (uniformly scaled, centred), runs of a closed curve across its
+// inside its margins (uniformly scaled, centred; or drawn at options.scale), runs of a closed curve across its
 // first point joined, points the pen cannot show dropped (and paths shorter than its
 // width, which would be dots), and the paths of each curve
 // ordered nearest first (from the sheet's top-left corner, then each path's end), open

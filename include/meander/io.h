@@ -105,23 +105,14 @@ std::string mesh_file_bytes(const PolygonMesh& mesh, const std::filesystem::path
 //  .ply  binary: vertex float x,y,z and edge int vertex1,vertex2 (closed polylines with
 //        their closing edge)
 //  .json {"polylines": [{"closed": true, "points": [[x,y,z], ...]}, ...]}
-//  .svg  orthographic projection onto the x-y plane (looking down -z), fitted to a page
-//        of 1000 units on its longer side, or at true size in millimetres (options)
-//        (closed paths end with Z)
-// Points must be finite; an empty polyline gets no `l` element, edge or SVG path, and a
-// one-point polyline no edge (and no `l` if open). Atomic: no partial file is left.
-// Throws UsageError for any other extension.
-struct PolylineWriteOptions {
-  // The points are in millimetres (CurveJob::model_size): an SVG is drawn at true size,
-  // a user unit a millimetre, its width and height in mm, with a 2 mm margin and a
-  // 0.3 mm stroke (a plotter's pen); the other formats have no unit.
-  bool millimetres = false;
-};
-void write_polylines(const Polylines& curves, const std::filesystem::path& path, const PolylineWriteOptions& options = {});
+// Points must be finite; an empty polyline gets no `l` element or edge, and a one-point
+// polyline no edge (and no `l` if open). Atomic: no partial file is left. Throws
+// UsageError for any other extension: an SVG of curves is a drawing (drawing.h,
+// curve_svg in jobs.h).
+void write_polylines(const Polylines& curves, const std::filesystem::path& path);
 
 // The bytes write_polylines would write to a file named `name`, in memory.
-std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name,
-                                 const PolylineWriteOptions& options = {});
+std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name);
 
 // Writes bytes as the file `path`. Atomic: no partial file is left. Throws IOError.
 void write_bytes(const std::filesystem::path& path, std::string_view bytes);

@@ -104,6 +104,17 @@ Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, 
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas = {},
                            StageTimes* times = nullptr, Progress* progress = nullptr);
 
+// The one SVG of curves, what `meander curve -o OUT.svg`, `duotone --curve OUT.svg`, the
+// studio's curve.svg and meander.write_curves write: the plotter drawing (drawing.h)
+// seen from the front (along -z: x to the right, y up), the parts `surface` hides
+// removed (none where it is empty), with a 0.3 mm pen; with `millimetres` (a model size)
+// at true size on a sheet 2 mm larger than the drawing on each side, else fitted to an
+// A4 sheet inside 10 mm margins.
+std::string curve_svg(const Polylines& curves, const PolygonMesh& surface, bool millimetres);
+
+// The same of a curve make_curve made, hidden by the surface it lies on.
+std::string curve_svg(const CurveResult& curve, bool millimetres);
+
 // `meander image`: a picture drawn with one closed line on a sheet (docs/drawing.md).
 struct ImageJob {
   ToneOptions tone;

@@ -43,7 +43,6 @@ struct CycleCurveWriter::File {
   const QuadMesh& quads;
   std::filesystem::path path;
   CurveOptions options;
-  PolylineWriteOptions write;
   int k = 1;
   int32_t points = 0;
   // A PLY's layout, written by `thread` as if the points made one closed curve: where the
@@ -135,9 +134,8 @@ void CycleCurveWriter::File::stream_points() {
   }
 }
 
-CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path,
-                                   const PolylineWriteOptions& write)
-    : file_(new File{.quads = quads, .path = path, .options = options, .write = write}) {
+CycleCurveWriter::CycleCurveWriter(const QuadMesh& quads, const CurveOptions& options, const std::filesystem::path& path)
+    : file_(new File{.quads = quads, .path = path, .options = options}) {
   int64_t triangles = 0;
   for (int32_t q = 0; q < quads.num_quads(); ++q) triangles += quads.is_half(q) ? 1 : 2;
   file_->k = points_per_segment(triangles, options);
@@ -177,7 +175,7 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
     throw Error("internal error: the cycles of " + f.path.string() + " hold " + std::to_string(cycle.num_triangles()) +
                 " triangles, not the " + std::to_string(f.points / f.k) + " laid out");
   if (!f.ply) {
-    io::write_polylines(out, f.path, f.write);
+    io::write_polylines(out, f.path);
   } else {
     if (f.pending_first >= 0) io::write_ply_points(out, *f.ply, f.points_at, f.pending_first * f.k, (f.pending_first + 1) * f.k);
     io::write_ply_points(out, *f.ply, f.points_at, f.next * f.k, f.points);
@@ -200,9 +198,9 @@ int64_t CycleCurveWriter::finish(const TriangleCycle& cycle) {
 
 // The cycles are known here: the file needs no writer of its own.
 int64_t write_cycle_curves(const QuadMesh& quads, const TriangleCycle& cycle, const CurveOptions& options,
-                           const std::filesystem::path& path, const PolylineWriteOptions& write) {
+                           const std::filesystem::path& path) {
   const io::PolylineStream out = cycle_stream(quads, cycle, options);
-  io::write_polylines(out, path, write);
+  io::write_polylines(out, path);
   return out.start.back();
 }
 

@@ -28,10 +28,8 @@ struct PolylineStream {
 
 // What write_polylines (meander/io.h) writes for the same points held in Polylines, byte
 // for byte (write_polylines is this with the points copied out of the Polylines); no more
-// than a few blocks of points exist at once. An SVG asks for every point twice, its page
-// being fitted to their bounding box first.
-void write_polylines(const PolylineStream& curves, const std::filesystem::path& path,
-                     const PolylineWriteOptions& options = {});
+// than a few blocks of points exist at once.
+void write_polylines(const PolylineStream& curves, const std::filesystem::path& path);
 
 // write_polylines' PLY in two steps, for a writer that knows the polylines' sizes before
 // their points: write_ply_layout writes the header and the edges, which depend on

@@ -28,7 +28,7 @@ template <class F> void for_each_block(const io::PolylineStream& curves, int64_t
   }
 }
 
-void write_obj_polylines(const io::PolylineStream& curves, io::Sink& out, const PolylineWriteOptions&) {
+void write_obj_polylines(const io::PolylineStream& curves, io::Sink& out) {
   for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
     for (const Vec3& p : points) {
       out.text("v ");
@@ -53,11 +53,11 @@ void write_obj_polylines(const io::PolylineStream& curves, io::Sink& out, const 
   }
 }
 
-void write_ply_polylines(const io::PolylineStream& curves, io::Sink& out, const PolylineWriteOptions&) {
+void write_ply_polylines(const io::PolylineStream& curves, io::Sink& out) {
   io::write_ply_points(curves, out, io::write_ply_layout(curves, out));
 }
 
-void write_json_polylines(const io::PolylineStream& curves, io::Sink& out, const PolylineWriteOptions&) {
+void write_json_polylines(const io::PolylineStream& curves, io::Sink& out) {
   out.text("{\"polylines\": [");
   for (int32_t k = 0; k < curves.size(); ++k) {
     out.text(k == 0 ? "\n  " : ",\n  ");
@@ -78,57 +78,6 @@ void write_json_polylines(const io::PolylineStream& curves, io::Sink& out, const
     out.text("]}");
   }
   out.text(curves.size() > 0 ? "\n]}\n" : "]}\n");
-}
-
-// Looking down the -z axis: x to the right, y up (SVG's y grows downwards), the
-// drawing scaled to fit a page of 1000 units at the most on its longer side, or in
-// millimetres at true size. The page needs the bounding box first, so the points are
-// asked for twice.
-void write_svg_polylines(const io::PolylineStream& curves, io::Sink& out, const PolylineWriteOptions& options) {
-  const bool mm = options.millimetres;
-  constexpr double page = 1000;
-  const double margin = mm ? 2 : 20;
-  Box3 box;
-  for_each_block(curves, 0, curves.start.back(), [&](std::span<const Vec3> points) {
-    for (const Vec3& p : points) box.extend(p);
-  });
-  const double width = box.empty() ? 0 : double(box.max.x) - box.min.x;
-  const double height = box.empty() ? 0 : double(box.max.y) - box.min.y;
-  const double extent = std::max(width, height);
-  const double scale = mm || extent <= 0 ? 1 : (page - 2 * margin) / extent;
-  const double page_width = width * scale + 2 * margin, page_height = height * scale + 2 * margin;
-  // A hundredth of a unit or a thousandth of a millimetre: far below what a page, a
-  // screen or a plotter shows.
-  const int decimals = mm ? 3 : 2;
-  const char* unit = mm ? "mm" : "";
-  out.text("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"");
-  out.fixed(page_width, decimals);
-  out.text(unit);
-  out.text("\" height=\"");
-  out.fixed(page_height, decimals);
-  out.text(unit);
-  out.text("\" viewBox=\"0 0 ");
-  out.fixed(page_width, decimals);
-  out.put(' ');
-  out.fixed(page_height, decimals);
-  out.text(mm ? "\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"0.3\" stroke-linejoin=\"round\">\n"
-              : "\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"1\" stroke-linejoin=\"round\">\n");
-  for (int32_t k = 0; k < curves.size(); ++k) {
-    if (curves.start[k] == curves.start[k + 1]) continue;
-    out.text("<path d=\"");
-    bool first = true;
-    for_each_block(curves, curves.start[k], curves.start[k + 1], [&](std::span<const Vec3> points) {
-      for (const Vec3& p : points) {
-        out.text(first ? "M" : " L");
-        first = false;
-        out.fixed(margin + (double(p.x) - box.min.x) * scale, decimals);
-        out.put(' ');
-        out.fixed(margin + (double(box.max.y) - p.y) * scale, decimals);
-      }
-    });
-    out.text(curves.closed(k) ? " Z\"/>\n" : "\"/>\n");
-  }
-  out.text("</g>\n</svg>\n");
 }
 
 } // namespace
@@ -312,14 +261,14 @@ Polylines io::chain_edges(std::span<const Vec3> positions, std::span<const int32
 namespace {
 
 // The writer of a curve file's format, by its extension.
-using PolylineWriter = void (*)(const io::PolylineStream&, io::Sink&, const PolylineWriteOptions&);
+using PolylineWriter = void (*)(const io::PolylineStream&, io::Sink&);
 PolylineWriter polyline_writer(const std::filesystem::path& path) {
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".obj") return write_obj_polylines;
   if (extension == ".ply") return write_ply_polylines;
   if (extension == ".json") return write_json_polylines;
-  if (extension == ".svg") return write_svg_polylines;
-  throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply, .json or .svg)");
+  throw UsageError(path.string() + ": unknown curve format '" + extension + "' (expected .obj, .ply or .json" +
+                   (extension == ".svg" ? "; an SVG is a drawing (drawing.h)" : "") + ")");
 }
 
 io::PolylineStream stream_of(const Polylines& curves) {
@@ -330,23 +279,21 @@ io::PolylineStream stream_of(const Polylines& curves) {
 
 } // namespace
 
-void io::write_polylines(const io::PolylineStream& curves, const std::filesystem::path& path,
-                         const PolylineWriteOptions& options) {
+void io::write_polylines(const io::PolylineStream& curves, const std::filesystem::path& path) {
   const PolylineWriter write = polyline_writer(path);
   io::AtomicFile out(path);
-  write(curves, out, options);
+  write(curves, out);
   out.commit();
 }
 
-void write_polylines(const Polylines& curves, const std::filesystem::path& path, const PolylineWriteOptions& options) {
-  io::write_polylines(stream_of(curves), path, options);
+void write_polylines(const Polylines& curves, const std::filesystem::path& path) {
+  io::write_polylines(stream_of(curves), path);
 }
 
-std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name,
-                                 const PolylineWriteOptions& options) {
+std::string polylines_file_bytes(const Polylines& curves, const std::filesystem::path& name) {
   const PolylineWriter write = polyline_writer(name);
   io::MemorySink out;
-  write(stream_of(curves), out, options);
+  write(stream_of(curves), out);
   return out.take();
 }
 

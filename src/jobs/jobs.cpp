@@ -149,6 +149,16 @@ PolygonMesh curve_surface(const CurveResult& curve) {
 
 } // namespace
 
+std::string curve_svg(const Polylines& curves, const PolygonMesh& surface, bool millimetres) {
+  DrawingOptions options{.view = {.azimuth = 0, .elevation = 0}};
+  if (millimetres) options.paper.margin = 2, options.scale = 1;
+  return drawing_svg(draw_curves(curves, surface, options), options.pen);
+}
+
+std::string curve_svg(const CurveResult& curve, bool millimetres) {
+  return curve_svg(curve.curves, curve_surface(curve), millimetres);
+}
+
 Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {
   Scene scene;
   scene.meshes.push_back({.mesh = curve_surface(curve), .color = surface_color, .style = occluder});

@@ -114,8 +114,7 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
   const bool sample = job.sample || job.spacing;
   std::optional<CycleCurveWriter> writer;
-  const PolylineWriteOptions write{.millimetres = job.model_size.has_value()};
-  if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output, write);
+  if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
   if (writer) {
     stages.begin("smooth + write");
@@ -139,7 +138,7 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     }
     if (!job.output.empty()) {
       stages.begin("write curve");
-      write_polylines(result.curves, job.output, write);
+      write_polylines(result.curves, job.output);
       result.points_written = int64_t(result.curves.points.size());
     }
   }

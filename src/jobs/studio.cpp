@@ -735,8 +735,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     return {zip_archive(files), "application/zip", base + ".zip"};
   }
   case StudioFile::svg:
-    return {polylines_file_bytes(result.curve.curves, base + ".svg", {.millimetres = millimetres}), "image/svg+xml",
-            base + ".svg"};
+    return {curve_svg(result.curve, millimetres), "image/svg+xml", base + ".svg"};
   case StudioFile::png: {
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})

@@ -227,8 +227,10 @@ Drawing laid_out(std::vector<Path> paths, const Paper& paper, double pen, int32_
 } // namespace
 
 Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const DrawingOptions& options) {
-  const Paper& paper = options.paper;
+  Paper paper = options.paper;
   check_sheet(paper, options.pen);
+  if (options.scale && !(*options.scale > 0 && std::isfinite(*options.scale)))
+    throw UsageError("drawing scale: expected a positive number of millimetres a unit");
   const double area_width = paper.width - 2 * paper.margin, area_height = paper.height - 2 * paper.margin;
 
   // The pictures' camera for this scene, in the drawable area's proportions.
@@ -308,11 +310,19 @@ Drawing draw_curves(const Polylines& curves, const PolygonMesh& occluder, const 
   for (const Path& p : paths)
     for (const Point2& q : p.points)
       lo_x = std::min(lo_x, q.x), hi_x = std::max(hi_x, q.x), lo_y = std::min(lo_y, q.y), hi_y = std::max(hi_y, q.y);
-  const double extent_x = hi_x - lo_x, extent_y = hi_y - lo_y;
-  const double scale = std::min(extent_x > 0 ? area_width / extent_x : INFINITY, extent_y > 0 ? area_height / extent_y : INFINITY);
-  const double fit = std::isfinite(scale) ? scale : 1;
-  const double offset_x = paper.margin + (area_width - extent_x * fit) / 2 - lo_x * fit;
-  const double offset_y = paper.margin + (area_height - extent_y * fit) / 2 - lo_y * fit;
+  const double extent_x = paths.empty() ? 0 : hi_x - lo_x, extent_y = paths.empty() ? 0 : hi_y - lo_y;
+  double fit = 1;
+  if (options.scale) { // true size at the depth of the curves' centre, on a sheet the drawing's size
+    const Box3 box = bounding_box(curves.points);
+    fit = *options.scale * dot(to_double(box.min + box.max) * 0.5 - eye, forward);
+    paper.width = extent_x * fit + 2 * paper.margin, paper.height = extent_y * fit + 2 * paper.margin;
+  } else if (const double scale = std::min(extent_x > 0 ? area_width / extent_x : INFINITY,
+                                           extent_y > 0 ? area_height / extent_y : INFINITY);
+             std::isfinite(scale)) {
+    fit = scale;
+  }
+  const double offset_x = (paper.width - extent_x * fit) / 2 - (paths.empty() ? 0 : lo_x) * fit;
+  const double offset_y = (paper.height - extent_y * fit) / 2 - (paths.empty() ? 0 : lo_y) * fit;
   tbb::parallel_for(size_t(0), paths.size(), [&](size_t i) {
     const std::vector<Point2>& p = paths[i].points;
     paths[i].points = simplified(p.size(), paths[i].closed, pen_tolerance(options.pen), [&](size_t k) {
