@@ -31,6 +31,6 @@ struct ToneOptions {
 // come out as an even mixture of two sizes whose ink is right on average.
 // Throws ParameterError for options out of range and UsageError when the finest cells
 // would number more than `max_cells`. Deterministic; O(pixels + finest cells * levels).
-PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOptions& options, int64_t max_cells = int64_t(1) << 26);
+PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOptions& options, int64_t max_cells = int64_t(1) << 23);
 
 } // namespace meander
