@@ -571,6 +571,11 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
   const StudioResult curve = make_studio_result(surface, {});
   EXPECT_THROW(studio_download(surface, curve, StudioFile::glb), UsageError);
   EXPECT_TRUE(studio_download(surface, curve, StudioFile::svg).bytes == curve_svg(curve.curve, false));
+  // With the page's camera, the plotter drawing of its view, on A4 turned as the view is.
+  const CameraPose seen{.eye = {4, 1, 6}, .target = {0, 0, 0}};
+  const std::string drawn = studio_download(surface, curve, StudioFile::svg, {.width = 800, .height = 500, .camera = seen}).bytes;
+  EXPECT_TRUE(drawn == drawing_svg(draw_curve(curve.curve, {.camera = seen, .paper = parse_paper("A4", true)}), 0.3));
+  EXPECT_NE(drawn.find(R"(width="297mm" height="210mm")"), std::string::npos);
 }
 
 TEST(Studio, SessionsAreFoundByIdAndTheOldestDropped) {

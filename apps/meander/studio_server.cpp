@@ -523,7 +523,8 @@ struct StudioServer::Impl {
         // Both branches lvalues: `result ? *result : StudioResult{}` copied the whole result
         // (mesh, curve, quads) on every download, the view's included.
         const StudioResult nothing;
-        const StudioPicture picture = file == StudioFile::png ? parse_studio_picture(req.params) : StudioPicture{};
+        const bool seen = file == StudioFile::png || file == StudioFile::svg; // as the view shows it
+        const StudioPicture picture = seen ? parse_studio_picture(req.params) : StudioPicture{};
         StudioDownload download = studio_download(*session->surface, result ? *result : nothing, file, picture);
         res.set_header("Content-Disposition", "attachment; filename=\"" + download.filename + "\"");
         // What set_content does, without its copy of a view of tens of megabytes.

@@ -115,6 +115,10 @@ std::string curve_svg(const Polylines& curves, const PolygonMesh& surface, bool 
 // The same of a curve make_curve made, hidden by the surface it lies on.
 std::string curve_svg(const CurveResult& curve, bool millimetres);
 
+// The drawing of a curve make_curve made, hidden by the surface it lies on (what `meander
+// draw` draws of a mesh).
+Drawing draw_curve(const CurveResult& curve, const DrawingOptions& options);
+
 // `meander image`: a picture drawn with one closed line on a sheet (docs/drawing.md).
 struct ImageJob {
   ToneOptions tone;

@@ -175,13 +175,14 @@ struct StudioDownload {
 };
 
 // How render.png is drawn: its size, and the camera of the page's view (none: framed as
-// `meander curve --png` frames it).
+// `meander curve --png` frames it); curve.svg with a camera is the plotter drawing of that
+// view on an A4 sheet, landscape when the size is (none: curve_svg's, from the front).
 struct StudioPicture {
   int32_t width = 1200, height = 900;
   std::optional<CameraPose> camera;
 };
 
-// The picture a query asks for (GET .../render.png?size=WxH&eye=X,Y,Z&target=X,Y,Z&up=X,Y,Z&fov=DEGREES,
+// The picture a query asks for (GET .../render.png or curve.svg?size=WxH&eye=X,Y,Z&target=X,Y,Z&up=X,Y,Z&fov=DEGREES,
 // each optional, eye and target together). Throws UsageError naming the key for anything
 // else (and what render() refuses: a size over 16384 or a degenerate camera).
 StudioPicture parse_studio_picture(const std::multimap<std::string, std::string>& query);

@@ -149,14 +149,28 @@ PolygonMesh curve_surface(const CurveResult& curve) {
 
 } // namespace
 
-std::string curve_svg(const Polylines& curves, const PolygonMesh& surface, bool millimetres) {
+namespace {
+
+DrawingOptions curve_svg_options(bool millimetres) {
   DrawingOptions options{.view = {.azimuth = 0, .elevation = 0}};
   if (millimetres) options.paper.margin = 2, options.scale = 1;
+  return options;
+}
+
+} // namespace
+
+std::string curve_svg(const Polylines& curves, const PolygonMesh& surface, bool millimetres) {
+  const DrawingOptions options = curve_svg_options(millimetres);
   return drawing_svg(draw_curves(curves, surface, options), options.pen);
 }
 
 std::string curve_svg(const CurveResult& curve, bool millimetres) {
-  return curve_svg(curve.curves, curve_surface(curve), millimetres);
+  const DrawingOptions options = curve_svg_options(millimetres);
+  return drawing_svg(draw_curve(curve, options), options.pen);
+}
+
+Drawing draw_curve(const CurveResult& curve, const DrawingOptions& options) {
+  return draw_curves(curve.curves, curve_surface(curve), options);
 }
 
 Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {

@@ -734,8 +734,18 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     std::sort(files.begin(), files.end(), [](const NamedFile& a, const NamedFile& b) { return a.name < b.name; });
     return {zip_archive(files), "application/zip", base + ".zip"};
   }
-  case StudioFile::svg:
-    return {curve_svg(result.curve, millimetres), "image/svg+xml", base + ".svg"};
+  case StudioFile::svg: {
+    // A duotone's separating curves are hidden by its painted surface, the others by the
+    // surface their curve lies on. With the page's camera, the plotter drawing of the view
+    // on an A4 sheet turned as the view is; without, what `meander curve -o .svg` writes.
+    const bool duotone = result.params.mode == StudioMode::duotone;
+    if (!picture.camera)
+      return {duotone ? curve_svg(result.curve.curves, result.mesh, millimetres) : curve_svg(result.curve, millimetres),
+              "image/svg+xml", base + ".svg"};
+    const DrawingOptions options{.camera = picture.camera, .paper = parse_paper("A4", picture.width > picture.height)};
+    const Drawing drawing = duotone ? draw_curves(result.curve.curves, result.mesh, options) : draw_curve(result.curve, options);
+    return {drawing_svg(drawing, options.pen), "image/svg+xml", base + ".svg"};
+  }
   case StudioFile::png: {
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})

@@ -559,15 +559,18 @@ function updateDownloads() {
     }
   }
 }
-// The render as the view shows it: the camera on screen, at the view's size.
-$('downloads').querySelector('a[data-file="render.png"]').addEventListener('click', (e) => {
-  const a = e.currentTarget;
-  if (!a.href) return;
-  const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
-  const { clientWidth: w, clientHeight: h } = container;
-  a.href = `/api/result/${state.session}/render.png?eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}` +
-    `&fov=${camera.fov}&size=${Math.max(16, Math.round(w))}x${Math.max(16, Math.round(h))}`;
-});
+// The render and the plotter drawing as the view shows them: the camera on screen, at the
+// view's size (the drawing's sheet turned as the view is).
+for (const file of ['render.png', 'curve.svg']) {
+  $('downloads').querySelector(`a[data-file="${file}"]`).addEventListener('click', (e) => {
+    const a = e.currentTarget;
+    if (!a.href) return;
+    const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
+    const { clientWidth: w, clientHeight: h } = container;
+    a.href = `/api/result/${state.session}/${file}?eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}` +
+      `&fov=${camera.fov}&size=${Math.max(16, Math.round(w))}x${Math.max(16, Math.round(h))}`;
+  });
+}
 
 // ---- controls -----------------------------------------------------------------------------
 // Every control the settings are made of, as the URL and the local storage keep them.
