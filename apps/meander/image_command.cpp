@@ -56,22 +56,25 @@ void run_image(const ImageArgs& a) {
   log.note(std::to_string(result.cells) + " cells");
   log.note(leaves_note(result.leaves));
 
+  // Every file made before the first is written, so that a refusal leaves none behind.
   const Drawing& drawing = result.drawing;
-  const auto write_png_of = [&](const std::string& path) {
-    write_png(drawing_image(drawing, job.pen, picture_width(a.size, drawing.paper)), path);
-  };
+  const auto png_of = [&] { return png_file_bytes(drawing_image(drawing, job.pen, picture_width(a.size, drawing.paper))); };
   const std::string extension = lowercase_extension(a.output);
+  std::string out;
   if (extension == ".svg") {
-    write_drawing(drawing, job.pen, a.output);
+    out = drawing_svg(drawing, job.pen);
   } else if (extension == ".png") {
-    write_png_of(a.output);
+    out = png_of();
   } else { // a curve file, in millimetres with y up as 3D programs show it
     Polylines curve = result.curve;
     for (Vec3& p : curve.points) p.y = float(drawing.paper.height - p.y);
-    write_polylines(curve, a.output);
+    out = polylines_file_bytes(curve, a.output);
   }
-  if (!a.duotone.empty()) write_bytes(a.duotone, line_picture_duotone_svg(result, job));
-  if (!a.png.empty()) write_png_of(a.png);
+  const std::string duotone = a.duotone.empty() ? "" : line_picture_duotone_svg(result, job);
+  const std::string preview = a.png.empty() ? "" : png_of();
+  write_bytes(a.output, out);
+  if (!a.duotone.empty()) write_bytes(a.duotone, duotone);
+  if (!a.png.empty()) write_bytes(a.png, preview);
   log.lap("write");
   std::fprintf(stderr, "%s: one closed line on %gx%g mm, %.0f mm long\n", a.output.c_str(), drawing.paper.width,
                drawing.paper.height, drawing.drawn_length);
