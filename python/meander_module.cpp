@@ -460,17 +460,22 @@ Texture picture_from(py::handle picture, int64_t max_pixels) {
   if (max_pixels > 0 && int64_t(width) * height > max_pixels)
     throw py::value_error("picture: " + std::to_string(width) + "x" + std::to_string(height) + " pixels, more than the " +
                           std::to_string(max_pixels) + " allowed");
-  // Bytes as they are; numbers in 0..1 scaled to bytes.
-  const bool fraction = array.dtype().kind() == 'f';
-  const auto numbers = py::array_t<double, py::array::forcecast | py::array::c_style>(array);
-  const double* in = numbers.data();
   Texture t{.width = int32_t(width), .height = int32_t(height)};
   t.rgba.resize(size_t(width) * size_t(height) * 4, 255);
-  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-    for (size_t c = 0; c < (channels == 1 ? 3 : size_t(channels)); ++c) {
-      const double v = in[i * size_t(channels) + (channels == 1 ? 0 : c)];
-      t.rgba[4 * i + c] = uint8_t(std::lround(std::clamp(fraction ? v * 255 : v, 0.0, 255.0)));
-    }
+  // Grey to R = G = B; alpha, where given, kept.
+  const auto fill = [&](const auto* in, auto byte) {
+    for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
+      for (size_t c = 0; c < (channels == 1 ? 3 : size_t(channels)); ++c)
+        t.rgba[4 * i + c] = byte(in[i * size_t(channels) + (channels == 1 ? 0 : c)]);
+  };
+  if (array.dtype().is(py::dtype::of<uint8_t>())) { // bytes, read in place when C-contiguous
+    const auto bytes = py::array_t<uint8_t, py::array::forcecast | py::array::c_style>(array);
+    fill(bytes.data(), [](uint8_t v) { return v; });
+  } else { // numbers in 0..1, or other integers as bytes (clamped)
+    const double scale = array.dtype().kind() == 'f' ? 255 : 1;
+    const auto numbers = py::array_t<double, py::array::forcecast | py::array::c_style>(array);
+    fill(numbers.data(), [scale](double v) { return uint8_t(std::lround(std::clamp(v * scale, 0.0, 255.0))); });
+  }
   return t;
 }
 

@@ -343,6 +343,7 @@ def test_image_makes_the_command_lines_drawing_from_a_file_or_an_array(cli, tmp_
     assert svg == svg_path.read_text() and duotone == duotone_path.read_text()
     assert meander.image(picture, paper="A5", spacing=0.8, seed=4)[1] == svg
     assert meander.image(picture / 255.0, paper="A5", spacing=0.8, seed=4)[1] == svg  # numbers in 0..1
+    assert meander.image(picture.astype(np.int64), paper="A5", spacing=0.8, seed=4)[1] == svg  # other integers as bytes
     assert len(paths) == 1 and np.array_equal(paths[0][0], paths[0][-1])  # one closed line
     assert paths[0].min() >= 10 and (paths[0].max(axis=0) <= [200, 138]).all()  # inside the margins of A5 turned
     assert [p["name"] for p in meander.parameters("image")][:4] == ["paper", "margin", "width", "pen"]
