@@ -6,9 +6,9 @@
 // the scene changed, downloads the STL and checks it is a valid binary STL; cancels a job
 // held on the server by a newer change and by Stop; shows a full result refused as too
 // large; shows a duotone; restores the settings from the URL after a reload; lays the
-// page out 390 px wide; runs axe-core (no serious or critical violation) on each state;
+// page out 390 px wide; draws a picture with one line and downloads its SVGs; runs axe-core (no serious or critical violation) on each state;
 // shows a bad file's error; and saves screenshots to OUTPUT_FOLDER (studio_e2e*.png: the
-// welcome, a variable wire, a duotone, a phone).
+// welcome, a variable wire, a duotone, a phone, a picture).
 // Exits 0 with a message, without testing, only when Chromium is not installed and CI is
 // not set.
 import { spawn } from 'node:child_process';
@@ -54,6 +54,10 @@ setInterval(async () => {
 function check(condition, message) {
   if (!condition) throw new Error(`studio e2e: ${message}`);
 }
+
+// The CLI, for the files the test opens.
+const runMeander = (args) => new Promise((resolve, reject) => spawn(binary, args, { stdio: 'ignore' })
+  .on('exit', (code) => (code === 0 ? resolve() : reject(new Error(`meander ${args[0]} exited with ${code}`)))));
 
 const server = spawn(binary, ['serve', '--port', '0', '--test-hooks'], { stdio: ['ignore', 'pipe', 'inherit'] });
 // Whatever fails below, the server goes with this process.
@@ -139,8 +143,7 @@ try {
   step('opening a mesh by keyboard');
   // A keyboard alone opens a mesh: Tab reaches the open button, Enter opens the file chooser.
   const torus = path.join(outputFolder, 'studio_e2e_torus.obj');
-  await new Promise((resolve, reject) => spawn(binary, ['generate', 'torus', '--faces', '400', '-o', torus], { stdio: 'ignore' })
-    .on('exit', (code) => (code === 0 ? resolve() : reject(new Error(`meander generate exited with ${code}`)))));
+  await runMeander(['generate', 'torus', '--faces', '400', '-o', torus]);
   let tabs = 0;
   while (await page.evaluate(() => document.activeElement?.id) !== 'drop') {
     check(++tabs < 20, 'Tab never reaches the button that opens a mesh');
@@ -349,7 +352,7 @@ try {
   await page.waitForSelector('#welcome');
   const restored = await page.evaluate(() => ({ mode: document.getElementById('mode').value,
     size: document.getElementById('texture-size').value, seed: document.getElementById('seed').value,
-    duotone: !document.querySelector('section[data-modes="duotone"]').hidden }));
+    duotone: document.getElementById('tiles').closest('[hidden]') === null }));
   check(restored.mode === 'duotone' && restored.size === '256' && restored.seed === '8' && restored.duotone,
     `a reload restores the settings (${JSON.stringify(restored)})`);
   await page.selectOption('#tiles', 'dots');
@@ -380,6 +383,42 @@ try {
   check(await page.isVisible('#mode'), 'the Settings button unfolds the settings');
   await accessible('390 px with the settings');
   await page.setViewportSize({ width: 1280, height: 800 });
+
+  step('a picture drawn with one line');
+  // A picture (here one Meander rendered) opens in picture mode, the only mode it takes:
+  // the view shows its sheet, the SVG drawing; the gamma slider redraws it; the drawing
+  // downloads as one closed path, and its duotone as the two regions.
+  const picture = path.join(outputFolder, 'studio_e2e_picture.png');
+  await runMeander(['curve', torus, '-o', path.join(outputFolder, 'studio_e2e_picture.obj'), '--png', picture, '--size', '320x240']);
+  await change(() => page.setInputFiles('#file', picture));
+  const drawn = await page.evaluate(() => ({ mode: document.getElementById('mode').value,
+    name: document.getElementById('mesh-name').textContent, info: window.studio.resultInfo(), stats: window.studio.state.stats,
+    sheet: !document.getElementById('sheet').hidden, view: !document.getElementById('view').hidden,
+    curveOffered: !document.querySelector('#mode option[value=curve]').disabled,
+    stl: document.querySelector('a[data-file="result.stl"]').getAttribute('aria-disabled') }));
+  check(drawn.mode === 'picture' && drawn.name.startsWith('studio_e2e_picture.png: 320 × 240 pixels'),
+    `a picture opens in picture mode (${drawn.mode}, ${drawn.name})`);
+  check(drawn.info?.drawing && drawn.info.width > 0 && drawn.sheet && !drawn.view, `the view shows the drawing (${JSON.stringify(drawn.info)})`);
+  check(drawn.stats.mode === 'picture' && drawn.stats.curves === 1 && drawn.stats.cells > 0,
+    `a picture is drawn with one line (${JSON.stringify(drawn.stats)})`);
+  check(!drawn.curveOffered && drawn.stl === 'true', 'a picture takes no mesh mode, and has no mesh to download');
+  await change(() => sliderTo('gamma', '2.5'));
+  const lighter = await page.evaluate(() => window.studio.state.stats);
+  check(lighter.curve_length < drawn.stats.curve_length,
+    `a higher gamma lightens the middle tones: less line (${lighter.curve_length} mm after ${drawn.stats.curve_length})`);
+  await accessible('a picture');
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_picture_mode.png') });
+  const downloaded = async (file) => {
+    const [saved] = await Promise.all([page.waitForEvent('download'), page.click(`a[data-file="${file}"]`)]);
+    const where = path.join(outputFolder, `studio_e2e_${file}`);
+    await saved.saveAs(where);
+    return readFileSync(where, 'utf8');
+  };
+  const svg = await downloaded('curve.svg');
+  const paths = svg.match(/<path [^>]*d="[^"]*"/g) ?? [];
+  check(paths.length === 1 && paths[0].endsWith('Z"'), `the drawing is one closed path (${paths.length} paths)`);
+  const duotoneSvg = await downloaded('duotone.svg');
+  check(duotoneSvg.includes('fill-rule="evenodd"'), 'the duotone SVG fills the regions the line bounds');
 
   step('a link with an unknown choice');
   // A link with a choice a menu does not have keeps that menu's default, and the rest.

@@ -77,7 +77,7 @@ TEST(StudioHttp, MalformedMultipartBodiesAreRefusedWithAMessage) {
 
   const std::string malformed = "malformed multipart/form-data body: no boundary in its Content-Type, bad part headers, "
                                 "or no closing boundary";
-  const std::string expected = "expected the mesh file as the multipart/form-data field 'mesh'";
+  const std::string expected = "expected the mesh file or picture as the multipart/form-data field 'mesh'";
   const std::string binary("\x00\xff\x1f\x8b\r\n--\r\n\x00--b0undary\x00", 22);
   const struct {
     const char* what;

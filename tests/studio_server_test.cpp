@@ -1,4 +1,5 @@
 // `meander serve` over real HTTP: the server on a free port of 127.0.0.1, httplib's client.
+#include "meander/io.h"
 #include "studio_server.h"
 #include "running_server.h"
 #include "test_support.h"
@@ -181,6 +182,43 @@ TEST_F(StudioServerTest, UploadOfAMeshFile) {
   EXPECT_EQ(json::parse(res->body)["name"], "square.obj");
 }
 
+// A picture uploaded as a mesh is: the session is a picture, picture mode draws it, and
+// its drawing downloads as SVG with one closed path.
+TEST_F(StudioServerTest, APictureUploadIsDrawnWithOneLine) {
+  const auto info = client().Get("/api/info");
+  ASSERT_TRUE(info);
+  const json about = json::parse(info->body);
+  EXPECT_NE(std::find(about["pictures"].begin(), about["pictures"].end(), ".jpg"), about["pictures"].end());
+  EXPECT_NE(std::find(about["modes"].begin(), about["modes"].end(), "picture"), about["modes"].end());
+  Image image{.width = 64, .height = 48};
+  for (int32_t i = 0; i < 64 * 48; ++i) {
+    const uint8_t g = uint8_t(4 * (i % 64)); // dark on the left
+    image.rgba.insert(image.rgba.end(), {g, g, g, 255});
+  }
+  const auto res = client().Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", png_file_bytes(image), "ramp.png", "image/png"}});
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const json reply = json::parse(res->body);
+  EXPECT_EQ(reply["picture"], json({{"width", 64}, {"height", 48}}));
+  const std::string session = reply["session"];
+  const auto made = client().Post("/api/make", json{{"session", session}, {"mode", "picture"}, {"paper", "A5"}}.dump(), "application/json");
+  ASSERT_TRUE(made);
+  ASSERT_EQ(made->status, 200) << made->body;
+  EXPECT_EQ(json::parse(made->body)["curves"], 1);
+  const auto svg = client().Get("/api/result/" + session + "/curve.svg?size=800x600");
+  ASSERT_TRUE(svg);
+  ASSERT_EQ(svg->status, 200) << svg->body;
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  int layers = 0;
+  const std::vector<test::SvgPath> paths = test::read_svg_paths(svg->body, layers);
+  ASSERT_EQ(paths.size(), 1u);
+  EXPECT_TRUE(paths[0].closed);
+  const auto wrong = client().Post("/api/make", json{{"session", session}, {"mode", "curve"}}.dump(), "application/json");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 400);
+  EXPECT_EQ(error_of(wrong), "ramp.png: a picture: only picture mode draws it (open a mesh for the other modes)");
+}
+
 TEST_F(StudioServerTest, MalformedUploadsAreRefusedWithTheCliMessage) {
   auto c = client();
   const auto bad = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", "v 0 0 0\nf 1 2 3\n", "bad.obj", ""}});
@@ -190,7 +228,7 @@ TEST_F(StudioServerTest, MalformedUploadsAreRefusedWithTheCliMessage) {
   const auto no_field = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"file", "x", "a.obj", ""}});
   ASSERT_TRUE(no_field);
   EXPECT_EQ(no_field->status, 400);
-  EXPECT_EQ(error_of(no_field), "expected the mesh file as the multipart/form-data field 'mesh'");
+  EXPECT_EQ(error_of(no_field), "expected the mesh file or picture as the multipart/form-data field 'mesh'");
   const auto not_multipart = c.Post("/api/mesh", "v 0 0 0", "text/plain");
   ASSERT_TRUE(not_multipart);
   EXPECT_EQ(not_multipart->status, 400);
@@ -415,7 +453,7 @@ TEST_F(StudioServerTest, HoldIsOnlyForTests) {
 }
 
 TEST(StudioServerLimits, LargeUploadsAndResultsAreRefusedWithAMessage) {
-  RunningServer running({.port = 0, .max_faces = 2, .max_result = 200'000});
+  RunningServer running({.port = 0, .max_faces = 2, .max_pixels = 1000, .max_result = 200'000});
   httplib::Client c = test::client_of(running.port);
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
   const auto two = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", square, "square.obj", ""}});
@@ -425,6 +463,11 @@ TEST(StudioServerLimits, LargeUploadsAndResultsAreRefusedWithAMessage) {
   ASSERT_TRUE(three);
   EXPECT_EQ(three->status, 422);
   EXPECT_EQ(json::parse(three->body)["error"], "three.obj: 3 faces, more than the limit of 2");
+  Image wide{.width = 2000, .height = 1, .rgba = std::vector<uint8_t>(2000 * 4, 128)};
+  const auto picture = c.Post("/api/mesh", httplib::MultipartFormDataItems{{"mesh", png_file_bytes(wide), "wide.png", ""}});
+  ASSERT_TRUE(picture);
+  EXPECT_EQ(picture->status, 422);
+  EXPECT_NE(json::parse(picture->body)["error"].get<std::string>().find("wide.png: "), std::string::npos) << picture->body;
   // The demo (1,600 faces) is the server's own; what a request asks of it is bounded.
   const auto demo = c.Post("/api/demo", "", "application/json");
   ASSERT_TRUE(demo);

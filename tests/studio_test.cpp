@@ -20,6 +20,8 @@
 namespace meander {
 namespace {
 
+using nlohmann::json;
+
 // The files of a zip archive by name, read back by libzip with its consistency checks;
 // empty if it does not open.
 std::map<std::string, std::string> unzip(const std::string& archive) {
@@ -576,6 +578,122 @@ TEST(Studio, DownloadsAreTheWritersFiles) {
   const std::string drawn = studio_download(surface, curve, StudioFile::svg, {.width = 800, .height = 500, .camera = seen}).bytes;
   EXPECT_TRUE(drawn == drawing_svg(draw_curve(curve.curve, {.camera = seen, .paper = parse_paper("A4", true)}), 0.3));
   EXPECT_NE(drawn.find(R"(width="297mm" height="210mm")"), std::string::npos);
+}
+
+// What `work` throws as E, or a note that it threw nothing.
+template <class E, class Work> std::string thrown(Work&& work) {
+  try {
+    work();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "(nothing thrown)";
+}
+
+// A dark disk on white as PNG bytes, w x h pixels.
+std::string disk_png(int32_t w, int32_t h) {
+  Image image{.width = w, .height = h};
+  for (int32_t y = 0; y < h; ++y)
+    for (int32_t x = 0; x < w; ++x) {
+      const uint8_t g = std::hypot(x - w / 2.0, y - h / 2.0) < 0.35 * std::min(w, h) ? 20 : 235;
+      image.rgba.insert(image.rgba.end(), {g, g, g, 255});
+    }
+  return png_file_bytes(image);
+}
+
+// Picture mode is `meander image`: the same parameters give the CLI's files byte for byte.
+TEST(Studio, APictureIsDrawnAsMeanderImageDrawsIt) {
+  const std::filesystem::path dir = test::output_dir();
+  const std::string png = disk_png(160, 120);
+  test::write_file("photo.png", png);
+  const StudioSurface surface = load_studio_surface("uploads/photo.PNG", png);
+  EXPECT_EQ(surface.name, "photo.PNG");
+  EXPECT_EQ(surface.picture.width, 160);
+  EXPECT_EQ(surface.repaired.mesh.num_faces(), 0);
+  const MakeRequest request = parse_make_request(R"({"session": "s", "mode": "picture", "paper": "A5", "margin": "5mm",
+      "spacing": 0.8, "max_spacing": 5, "gamma": 1.2, "seed": 3, "colors": "red,navy", "quad": "none", "radius": "auto"})");
+  EXPECT_EQ(request.params.image.paper.width, 148);
+  EXPECT_EQ(request.params.image.paper.margin, 5);
+  EXPECT_EQ(request.params.image.tone.spacing, 0.8);
+  EXPECT_EQ(request.params.image.cycle.seed, 3u);
+  const StudioResult result = make_studio_result(surface, request.params);
+  ASSERT_EQ(result.curve.curves.start.size(), 2u); // one closed line
+  const json stats = json::parse(studio_stats_json(result));
+  EXPECT_EQ(stats["mode"], "picture");
+  EXPECT_EQ(stats["curves"], 1);
+  EXPECT_EQ(stats["cells"], result.picture.cells);
+  EXPECT_EQ(stats["paper"], json({210.0, 148.0})); // turned to the picture
+  EXPECT_GT(stats["leaves"].get<int64_t>(), 0);
+  EXPECT_NEAR(stats["curve_length"].get<double>(), result.picture.drawing.drawn_length, 1e-9);
+
+  const auto out = [&](const char* name) { return (dir / name).string(); };
+  const test::CommandResult r =
+      test::run_cli({"image", out("photo.png"), "-o", out("photo_cli.svg"), "--paper", "A5", "--margin", "5mm", "--spacing",
+                     "0.8", "--max-spacing", "5", "--gamma", "1.2", "--seed", "3", "--colors", "red,navy", "--duotone",
+                     out("photo_cli_duotone.svg"), "--png", out("photo_cli.png"), "--size", "400x300"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(test::run_cli({"image", out("photo.png"), "-o", out("photo_cli.obj"), "--paper", "A5", "--margin", "5mm",
+                           "--spacing", "0.8", "--max-spacing", "5", "--gamma", "1.2", "--seed", "3"})
+                .exit_code,
+            0);
+  const StudioDownload svg = studio_download(surface, result, StudioFile::svg, {.width = 400, .height = 300});
+  EXPECT_EQ(svg.filename, "photo_picture.svg");
+  EXPECT_TRUE(svg.bytes == test::read_file(out("photo_cli.svg")));
+  EXPECT_TRUE(studio_download(surface, result, StudioFile::duotone_svg).bytes == test::read_file(out("photo_cli_duotone.svg")));
+  EXPECT_TRUE(studio_download(surface, result, StudioFile::png, {.width = 400, .height = 300}).bytes ==
+              test::read_file(out("photo_cli.png")));
+  const std::map<std::string, std::string> zip = unzip(studio_download(surface, result, StudioFile::obj_zip).bytes);
+  ASSERT_EQ(zip.size(), 1u);
+  EXPECT_TRUE(zip.at("photo_picture.obj") == test::read_file(out("photo_cli.obj")));
+
+  // A preview: the same line with at most 2 samples a segment.
+  StudioParams preview = request.params;
+  preview.preview = true;
+  const StudioResult quick = make_studio_result(surface, preview);
+  EXPECT_EQ(quick.params.image.curve.samples, 2);
+  EXPECT_LT(quick.curve.curves.points.size(), result.curve.curves.points.size());
+  EXPECT_EQ(studio_download(surface, quick, StudioFile::svg).filename, "photo_picture_preview.svg");
+}
+
+// A picture takes picture mode alone, a mesh every mode but picture: a clear refusal
+// either way, and the files a picture has no use for.
+TEST(Studio, APictureTakesPictureModeAlone) {
+  const StudioSurface picture = load_studio_surface("photo.jpg.png", disk_png(40, 30));
+  const StudioSurface mesh = demo_surface();
+  EXPECT_EQ(thrown<UsageError>([&] { make_studio_result(picture, {.mode = StudioMode::curve}); }),
+            "photo.jpg.png: a picture: only picture mode draws it (open a mesh for the other modes)");
+  EXPECT_EQ(thrown<UsageError>([&] { make_studio_result(mesh, {.mode = StudioMode::picture}); }),
+            "pretzel.obj: a mesh: picture mode draws a picture (open a .png or .jpg)");
+  const StudioResult drawn = make_studio_result(picture, {.mode = StudioMode::picture});
+  EXPECT_THROW(studio_download(picture, drawn, StudioFile::surface), UsageError);
+  EXPECT_THROW(studio_download(picture, drawn, StudioFile::stl), UsageError);
+  EXPECT_THROW(studio_download(picture, drawn, StudioFile::texture), UsageError);
+  EXPECT_THROW(studio_download(mesh, make_studio_result(mesh, {}), StudioFile::duotone_svg), UsageError);
+  EXPECT_EQ(parse_studio_file("duotone.svg"), StudioFile::duotone_svg);
+  // The CLI's refusals, naming the upload.
+  EXPECT_EQ(thrown<InputError>([&] { make_studio_result(load_studio_surface("dot.png", disk_png(1, 1)), {.mode = StudioMode::picture}); }),
+            "dot.png: a picture of 1x1 pixels has no tones to draw (at least 2x2)");
+  EXPECT_THROW(load_studio_surface("big.png", disk_png(40, 30), 0, 1199), InputError);
+  EXPECT_THROW(load_studio_surface("broken.png", "not a png"), InputError);
+  // A picture's lengths are millimetres on paper: units need no model size there.
+  EXPECT_EQ(parse_make_request(R"({"session": "s", "mode": "picture", "spacing": "1mm", "pen": "0.05cm"})").params.image.pen, 0.5);
+  EXPECT_NE(message_of(R"({"session": "s", "mode": "picture", "gamma": 20})").find("gamma"), std::string::npos);
+  EXPECT_EQ(message_of(R"({"session": "s", "mode": "picture", "max_pixels": 20})"), "\"max_pixels\": unknown parameter");
+}
+
+// What a server checks before any work bounds the line a picture mode makes: a black
+// picture has the most ink there is.
+TEST(Studio, APicturesResultSizeBoundsItsLine) {
+  Image black{.width = 30, .height = 20, .rgba = std::vector<uint8_t>(30 * 20 * 4, 0)};
+  for (size_t i = 3; i < black.rgba.size(); i += 4) black.rgba[i] = 255;
+  const StudioSurface surface = load_studio_surface("black.png", png_file_bytes(black));
+  for (const char* sheet : {R"("paper": "A5")", R"("width": "60mm", "margin": 0)"}) {
+    const StudioParams params = parse_make_request(std::string(R"({"session": "s", "mode": "picture", "spacing": 1.5, )") + sheet + "}").params;
+    const StudioResult result = make_studio_result(surface, params);
+    const int64_t points = int64_t(result.curve.curves.points.size());
+    EXPECT_LE(points, studio_result_size(surface, params)) << sheet;
+    EXPECT_GE(points, studio_result_size(surface, params) / 3) << sheet;
+  }
 }
 
 TEST(Studio, SessionsAreFoundByIdAndTheOldestDropped) {

@@ -23,20 +23,13 @@ struct ImageArgs {
   bool verbose = false;
 };
 
-// The PNG's width: the largest picture of the sheet's proportions inside --size.
-int32_t picture_width(const std::string& size, const Paper& paper) {
-  int32_t width = 0, height = 0;
-  parse_size(size, width, height);
-  return std::max<int32_t>(1, int32_t(std::min<double>(width, std::floor(height * paper.width / paper.height))));
-}
-
 void run_image(const ImageArgs& a) {
   check_parameters(a.job);
   require_output_path(a.output, {".svg", ".obj", ".ply", ".png"}, "-o");
   if (!a.duotone.empty()) require_output_path(a.duotone, {".svg"}, "--duotone");
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
-  int32_t unused_width = 0, unused_height = 0;
-  parse_size(a.size, unused_width, unused_height);
+  int32_t width = 0, height = 0;
+  parse_size(a.size, width, height);
 
   StageLog log(a.verbose);
   const Texture picture = read_texture(a.input, a.job.max_pixels);
@@ -58,17 +51,15 @@ void run_image(const ImageArgs& a) {
 
   // Every file made before the first is written, so that a refusal leaves none behind.
   const Drawing& drawing = result.drawing;
-  const auto png_of = [&] { return png_file_bytes(drawing_image(drawing, job.pen, picture_width(a.size, drawing.paper))); };
+  const auto png_of = [&] { return png_file_bytes(drawing_image(drawing, job.pen, width, height)); };
   const std::string extension = lowercase_extension(a.output);
   std::string out;
   if (extension == ".svg") {
     out = drawing_svg(drawing, job.pen);
   } else if (extension == ".png") {
     out = png_of();
-  } else { // a curve file, in millimetres with y up as 3D programs show it
-    Polylines curve = result.curve;
-    for (Vec3& p : curve.points) p.y = float(drawing.paper.height - p.y);
-    out = polylines_file_bytes(curve, a.output);
+  } else {
+    out = polylines_file_bytes(line_picture_curve(result), a.output);
   }
   const std::string duotone = a.duotone.empty() ? "" : line_picture_duotone_svg(result, job);
   const std::string preview = a.png.empty() ? "" : png_of();

@@ -20,6 +20,7 @@ struct ServeArgs {
   int port = 8080;
   size_t max_upload = size_t(256) << 20;
   int64_t max_faces = StudioServerOptions{}.max_faces;
+  int64_t max_pixels = StudioServerOptions{}.max_pixels;
   int64_t max_result = StudioServerOptions{}.max_result;
   bool open = false;
   std::filesystem::path page;
@@ -60,6 +61,7 @@ void run_serve(const ServeArgs& a) {
                        .max_upload = a.max_upload,
                        .page = a.page.empty() ? page_beside_program() : a.page,
                        .max_faces = a.max_faces,
+                       .max_pixels = a.max_pixels,
                        .max_result = a.max_result,
                        .test_hooks = a.test_hooks});
   const int port = server.bind();
@@ -99,6 +101,8 @@ Command add_serve_command(CLI::App& parent) {
   app->add_option("--max-upload", args->max_upload, "largest request body in bytes (bigger uploads get HTTP 413)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app->add_option("--max-faces", args->max_faces, "largest mesh in faces (bigger uploads get HTTP 422)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--max-pixels", args->max_pixels, "largest picture in pixels (bigger uploads get HTTP 422)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app->add_option("--max-result", args->max_result,
                   "largest result in curve points, triangles and texture pixels (bigger requests get HTTP 413)")

@@ -304,6 +304,10 @@ template <class Work> void answer(httplib::Response& res, Work work) {
 }
 
 json surface_json(const std::string& session, const StudioSurface& surface) {
+  if (!surface.picture.empty())
+    return {{"session", session},
+            {"name", surface.name},
+            {"picture", {{"width", surface.picture.width}, {"height", surface.picture.height}}}};
   const PolygonMesh& mesh = surface.repaired.mesh;
   const Box3 box = bounding_box(mesh.positions);
   return {{"session", session},
@@ -416,9 +420,11 @@ struct StudioServer::Impl {
       send_json(res, 200,
                 {{"max_upload", options.max_upload},
                  {"max_faces", options.max_faces},
+                 {"max_pixels", options.max_pixels},
                  {"max_result", options.max_result},
-                 {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone"}},
-                 {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}}});
+                 {"modes", {"curve", "constant-wire", "constant-ribbon", "variable-wire", "variable-ribbon", "duotone", "picture"}},
+                 {"formats", {".obj", ".ply", ".stl", ".off", ".glb", ".gltf"}},
+                 {"pictures", studio_picture_extensions}});
     });
 
     http.Get("/api/parameters", [](const httplib::Request&, httplib::Response& res) {
@@ -429,7 +435,7 @@ struct StudioServer::Impl {
     // field and then copy the one asked for).
     http.Post("/api/mesh", [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& read) {
       answer(res, [&] {
-        const std::string expected = "expected the mesh file as the multipart/form-data field 'mesh'";
+        const std::string expected = "expected the mesh file or picture as the multipart/form-data field 'mesh'";
         if (!req.is_multipart_form_data()) throw UsageError(expected);
         std::string filename, bytes;
         int meshes = 0;
@@ -450,7 +456,8 @@ struct StudioServer::Impl {
           throw UsageError("malformed multipart/form-data body: no boundary in its Content-Type, bad part headers, or no "
                            "closing boundary");
         if (meshes == 0) throw UsageError(expected);
-        add_session(res, load_studio_surface(filename.empty() ? "upload" : filename, bytes, options.max_faces));
+        add_session(res, load_studio_surface(filename.empty() ? "upload" : filename, bytes, options.max_faces,
+                                             options.max_pixels));
       });
     });
 

@@ -26,6 +26,9 @@ struct StudioServerOptions {
   size_t sessions = 32; // kept at once; the oldest is dropped
   // An upload of more faces is refused (422) before any work (RepairOptions::max_faces).
   int64_t max_faces = 250'000;
+  // An uploaded picture of more pixels is refused (422) before it is decoded (a session
+  // keeps its picture at 4 bytes a pixel).
+  int64_t max_pixels = 16'000'000;
   // A make request whose result would hold more elements (studio_result_size: curve
   // points, triangles, texture pixels) is refused (413) before any work.
   int64_t max_result = 12'000'000;

@@ -93,10 +93,10 @@ std::string drawing_svg(const Drawing& drawing, double pen);
 // rest of the area `outside`, no stroke (the duotone of a line picture).
 std::string duotone_svg(const Drawing& drawing, const Rect& area, Rgb inside, Rgb outside);
 
-// The drawing as the paper shows it: `width` pixels across (the height in the sheet's
-// proportions), the pen's strokes black and antialiased on white. Throws UsageError for a
-// width outside 1..16384 or a height that would be. O(pixels + points * pen width).
-Image drawing_image(const Drawing& drawing, double pen, int32_t width);
+// The drawing as the paper shows it: the largest picture of the sheet's proportions
+// inside `width` x `height` pixels, the pen's strokes black and antialiased on white.
+// Throws UsageError for a side outside 1..16384. O(pixels + points * pen width).
+Image drawing_image(const Drawing& drawing, double pen, int32_t width, int32_t height);
 
 // Writes drawing_svg atomically (io.h, write_bytes).
 void write_drawing(const Drawing& drawing, double pen, const std::filesystem::path& path);

@@ -154,6 +154,10 @@ LinePicture make_line_picture(const Texture& picture, const ImageJob& job, Stage
 // The line picture's duotone (duotone_svg): inside the curve in the first colour.
 std::string line_picture_duotone_svg(const LinePicture& picture, const ImageJob& job);
 
+// The line as a curve file holds it (`meander image -o OUT.obj`): millimetres with y up,
+// as 3D programs show it.
+Polylines line_picture_curve(const LinePicture& picture);
+
 // The colours of the pictures: a copper wire on a light grey surface.
 inline constexpr Rgb wire_color{0.72f, 0.45f, 0.2f};
 inline constexpr Rgb surface_color{0.82f, 0.82f, 0.82f};

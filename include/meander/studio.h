@@ -14,6 +14,7 @@
 #include "meander/printability.h"
 #include "meander/progress.h"
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -30,11 +31,12 @@ namespace meander {
 
 // What the studio makes, as the page's mode menu lists them. The wire modes are
 // `meander wire --method constant|variable --shape wire|ribbon`, duotone is `meander
-// duotone` (duotone.h).
-enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, variable_ribbon, duotone };
+// duotone` (duotone.h), picture is `meander image` of an uploaded picture (the only mode
+// of a picture, which no other mode takes).
+enum class StudioMode { curve, constant_wire, constant_ribbon, variable_wire, variable_ribbon, duotone, picture };
 
 // Parses "curve" | "constant-wire" | "constant-ribbon" | "variable-wire" |
-// "variable-ribbon" | "duotone"; throws UsageError otherwise.
+// "variable-ribbon" | "duotone" | "picture"; throws UsageError otherwise.
 StudioMode parse_studio_mode(std::string_view name);
 
 // A preview holds at most about this many elements (triangles, or a curve's segments)
@@ -44,17 +46,20 @@ constexpr int64_t studio_preview_budget = 500'000;
 
 // What to make: the mode and the parameters of every mode's job (parameters.h), as the
 // page keeps them all. Curve mode runs wire.curve (make_curve), the wire modes `wire`
-// (its method and shape are the mode's), duotone `duotone`.
+// (its method and shape are the mode's), duotone `duotone`, picture `image`
+// (make_line_picture).
 struct StudioParams {
   StudioMode mode = StudioMode::curve;
   WireJob wire;
   DuotoneJob duotone;
+  ImageJob image;
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
   // larger than studio_preview_budget, studio_result_size), a wire still over it drawn as
   // its ribbon, levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
   // `radius auto` unchecked (see make_studio_result), a variable wire's self-intersections
   // not cleared (WireJob::clear), and no printability report. The full result follows it.
+  // A picture's preview is its line with at most 2 curve samples per segment.
   bool preview = false;
 };
 
@@ -78,24 +83,34 @@ struct MakeRequest {
 MakeRequest parse_make_request(std::string_view body);
 
 // Every mode's parameters for GET /api/parameters, so that the page's help is the CLI's:
-// {"curve": [P, ...], "wire": [...], "duotone": [...]}, each P {"name", "help",
+// {"curve": [P, ...], "wire": [...], "duotone": [...], "picture": [...]}, each P {"name", "help",
 // "default", and "min", "max", "choices" where it has them}.
 std::string studio_parameters_json();
 
-// A surface ready for the pipeline: read, repaired, its connectivity kept.
+// What a session holds: a surface ready for the pipeline (read, repaired, its
+// connectivity kept), or a picture for picture mode (the surface then empty).
 struct StudioSurface {
   std::string name; // the file name messages use
   RepairResult repaired;
   int32_t input_vertices = 0, input_faces = 0; // as read, before repair
+  Texture picture; // an uploaded picture
 };
+
+// The extensions of the pictures the studio takes (.png .jpg .jpeg .bmp .tga .gif), and
+// whether a file name has one (case aside).
+extern const std::array<std::string_view, 6> studio_picture_extensions;
+bool is_studio_picture(std::string_view filename);
 
 // Reads an uploaded file from memory, its format from the extension of `filename`
 // (only the last path component is used, as the name in messages; nothing is read from
 // or written to disk), and repairs it as `meander curve` does. OBJ, PLY, STL, OFF, GLB
 // and glTF with embedded data; a glTF that refers to files outside itself is refused.
-// Throws what read_mesh and repair throw (the CLI's messages), UsageError for another
-// extension, InputError for more faces than `max_faces` (0: no limit).
-StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces = 0);
+// A picture (is_studio_picture) is decoded as `meander image` reads it, and refused
+// beyond `max_pixels` (0: no limit).
+// Throws what read_mesh, repair and read_texture throw (the CLI's messages), UsageError
+// for another extension, InputError for more faces than `max_faces` (0: no limit).
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces = 0,
+                                  int64_t max_pixels = 0);
 
 // The bundled demo model: `meander generate pretzel --faces 1600`, light enough that
 // every mode updates within about a second at the CLI's defaults.
@@ -117,6 +132,7 @@ struct StudioResult {
   // (crossing_cycle_triangles), so that the page can say when no settings will clear it.
   int32_t surface_crossings = 0;
   int64_t triangles = 0; // of the cycle (curve mode) or the mesh, after fanning
+  LinePicture picture;   // picture mode's line and drawing (curve.curves is its line too)
   double seconds = 0;    // making it, report included
 };
 
@@ -129,8 +145,9 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 
 // Runs the mode's job on the surface as the CLI does (make_curve; wire_curve_job,
 // make_curve and make_wire, its report without the thickness rays (the live view's stats;
-// none for a preview); make_duotone, paint_duotone and separating_curves). Throws what
-// those throw, TopologyError messages naming the surface.
+// none for a preview); make_duotone, paint_duotone and separating_curves;
+// make_line_picture). Throws what those throw, TopologyError messages naming the
+// surface, UsageError for picture mode on a surface or another mode on a picture.
 // `previous`, the session's last result if any, lends its duotone atlas when the tile
 // options are the same (the atlas depends on them alone), and to a constant preview with
 // `radius auto` the radius it found, when it is a full result on the same curve.
@@ -142,7 +159,9 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
 // leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
 // for wires and ribbons vertices, faces, radius, preview_as_ribbon (true: a wire's preview
 // drawn as its ribbon) and (not for a preview, which has no report) watertight,
-// self_intersecting, volume, printable, and for duotone quads, faces, notes.
+// self_intersecting, volume, printable, for duotone quads, faces, notes, and for a
+// picture cells (of its quadtree), paper [width, height] in millimetres, pen_up_travel;
+// a picture's curve_length is its line's length on the sheet, in millimetres.
 std::string studio_stats_json(const StudioResult& result);
 
 // The files a result can be fetched as (GET /api/result/SESSION/NAME). The names are a
@@ -152,10 +171,11 @@ enum class StudioFile {
   view,    // the result as the view draws it
   texture, // duotone: the tile atlas as PNG
   stl, threemf, glb, obj_zip, svg, png,
+  duotone_svg, // picture: the two regions its line bounds
 };
 
 // "surface.bin", "view.bin", "texture.png", "result.stl", "result.3mf", "result.glb",
-// "result.zip", "curve.svg", "render.png"; throws UsageError for any other name.
+// "result.zip", "curve.svg", "render.png", "duotone.svg"; throws UsageError for any other name.
 StudioFile parse_studio_file(std::string_view name);
 
 // Geometry for the page's three.js view (docs/studio.md, "view.bin"): "MND3", the counts,
@@ -177,6 +197,8 @@ struct StudioDownload {
 // How render.png is drawn: its size, and the camera of the page's view (none: framed as
 // `meander curve --png` frames it); curve.svg with a camera is the plotter drawing of that
 // view on an A4 sheet, landscape when the size is (none: curve_svg's, from the front).
+// A picture's drawing has no camera: its PNG is the sheet at the largest size inside
+// the size.
 struct StudioPicture {
   int32_t width = 1200, height = 900;
   std::optional<CameraPose> camera;
@@ -188,8 +210,11 @@ struct StudioPicture {
 StudioPicture parse_studio_picture(const std::multimap<std::string, std::string>& query);
 
 // One file of the result, made in memory. The zip holds OBJ + MTL (+ the PNG texture of
-// a duotone). Throws UsageError for a mesh file in curve mode, texture.png without a
-// duotone.
+// a duotone), or the curve as OBJ (a picture's line in millimetres, as `meander image -o
+// .obj` writes it). A picture's curve.svg, render.png and duotone.svg are what `meander
+// image` writes as OUT.svg, OUT.png and --duotone. Throws UsageError for a mesh file in
+// curve or picture mode, texture.png without a duotone, duotone.svg without a picture,
+// surface.bin of a picture.
 StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
                                const StudioPicture& picture = {});
 

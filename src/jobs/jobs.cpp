@@ -238,4 +238,10 @@ std::string line_picture_duotone_svg(const LinePicture& picture, const ImageJob&
   return duotone_svg(picture.drawing, picture.area, rgb(job.colors[0]), rgb(job.colors[1]));
 }
 
+Polylines line_picture_curve(const LinePicture& picture) {
+  Polylines curve = picture.curve;
+  for (Vec3& p : curve.points) p.y = float(picture.drawing.paper.height - p.y);
+  return curve;
+}
+
 } // namespace meander

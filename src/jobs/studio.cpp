@@ -95,6 +95,7 @@ std::string mode_name(StudioMode mode) {
   case StudioMode::variable_wire: return "variable-wire";
   case StudioMode::variable_ribbon: return "variable-ribbon";
   case StudioMode::duotone: return "duotone";
+  case StudioMode::picture: return "picture";
   }
   return "curve";
 }
@@ -114,10 +115,10 @@ double total_length(const Polylines& curves) {
 
 StudioMode parse_studio_mode(std::string_view name) {
   for (StudioMode mode : {StudioMode::curve, StudioMode::constant_wire, StudioMode::constant_ribbon,
-                          StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::duotone})
+                          StudioMode::variable_wire, StudioMode::variable_ribbon, StudioMode::duotone, StudioMode::picture})
     if (name == mode_name(mode)) return mode;
   throw UsageError("unknown mode '" + std::string(name.substr(0, 40)) +
-                   "' (expected curve, constant-wire, constant-ribbon, variable-wire, variable-ribbon or duotone)");
+                   "' (expected curve, constant-wire, constant-ribbon, variable-wire, variable-ribbon, duotone or picture)");
 }
 
 namespace {
@@ -130,6 +131,12 @@ template <class T> std::string json_text(const json& value) {
   return value.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
+// Parameters no studio request sets: the mode sets the wire's method and shape, and a
+// picture's size was checked when it was uploaded.
+bool set_by_the_studio(const Parameter& parameter) {
+  return &parameter == &parameters::method || &parameter == &parameters::shape || &parameter == &parameters::max_pixels;
+}
+
 // Sets the parameter `key` of the mode's job from `value`; false if no mode's job has it.
 // The page sends every mode's parameters: those of other modes are checked, not set, and
 // refused only when no job takes the value (a duotone takes no "shaped" tree, a curve does).
@@ -138,8 +145,7 @@ bool set_studio_parameter(StudioParams& p, const std::string& key, const json& v
   std::optional<ParameterError> refusal;
   const auto set = [&](auto& job, bool applies) {
     visit_parameters(job, [&](const Parameter& parameter, auto& field) {
-      // The mode sets the wire's method and shape.
-      if (parameter.name != key || &parameter == &parameters::method || &parameter == &parameters::shape) return;
+      if (parameter.name != key || set_by_the_studio(parameter)) return;
       known = true;
       auto scratch = field;
       try {
@@ -155,17 +161,18 @@ bool set_studio_parameter(StudioParams& p, const std::string& key, const json& v
     });
   };
   set(p.wire.curve, p.mode == StudioMode::curve);
-  set(p.wire, p.mode != StudioMode::curve && p.mode != StudioMode::duotone);
+  set(p.wire, p.mode != StudioMode::curve && p.mode != StudioMode::duotone && p.mode != StudioMode::picture);
   set(p.duotone, p.mode == StudioMode::duotone);
+  set(p.image, p.mode == StudioMode::picture);
   if (!taken && refusal) throw *refusal;
   return known;
 }
 
 // A length with a unit ("3mm") needs the model size: without one, lengths are in the
-// model's own units.
+// model's own units. A picture's lengths are on paper, in millimetres.
 void refuse_units_without_model_size(const json& document, const StudioParams& p) {
   const bool sized = p.mode == StudioMode::duotone ? p.duotone.model_size.has_value() : p.wire.curve.model_size.has_value();
-  if (sized) return;
+  if (sized || p.mode == StudioMode::picture) return;
   const auto check = [&](const auto& job) {
     visit_parameters(job, [&](const Parameter& parameter, const auto&) {
       const auto value = document.find(std::string(parameter.name));
@@ -212,7 +219,7 @@ std::string studio_parameters_json() {
   const auto described = [](const auto& job) {
     json list = json::array();
     visit_parameters(job, [&](const Parameter& p, const auto& value) {
-      if (&p == &parameters::method || &p == &parameters::shape) return;
+      if (set_by_the_studio(p)) return;
       json entry = {{"name", p.name}, {"help", p.help}, {"default", parameter_text(p, value)}};
       if (std::isfinite(p.min)) entry["min"] = p.min;
       if (std::isfinite(p.max)) entry["max"] = p.max;
@@ -222,15 +229,33 @@ std::string studio_parameters_json() {
     return list;
   };
   const StudioParams defaults;
-  return json{{"curve", described(defaults.wire.curve)}, {"wire", described(defaults.wire)}, {"duotone", described(defaults.duotone)}}
+  return json{{"curve", described(defaults.wire.curve)},
+              {"wire", described(defaults.wire)},
+              {"duotone", described(defaults.duotone)},
+              {"picture", described(defaults.image)}}
       .dump();
 }
 
-StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces) {
+const std::array<std::string_view, 6> studio_picture_extensions = {".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif"};
+
+bool is_studio_picture(std::string_view filename) {
+  const size_t dot = filename.find_last_of('.');
+  if (dot == std::string_view::npos) return false;
+  std::string extension(filename.substr(dot));
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return std::find(studio_picture_extensions.begin(), studio_picture_extensions.end(), extension) !=
+         studio_picture_extensions.end();
+}
+
+StudioSurface load_studio_surface(std::string_view filename, std::string_view bytes, int64_t max_faces, int64_t max_pixels) {
   // Only the last component: a client's "../../x.obj" is a name for messages, not a path.
   const size_t slash = filename.find_last_of("/\\");
   std::string name(slash == std::string_view::npos ? filename : filename.substr(slash + 1));
   if (name.empty()) name = "upload";
+  if (is_studio_picture(name)) {
+    Texture picture = read_texture(bytes, name, max_pixels);
+    return {.name = std::move(name), .picture = std::move(picture)};
+  }
   const MeshFormat format = mesh_format_from_path(name);
   if (format == MeshFormat::gltf) refuse_external_uris(bytes, name);
   PolygonMesh mesh = read_mesh(bytes, format, name);
@@ -250,6 +275,17 @@ namespace {
 
 // The elements make_studio_result would hold for these parameters as they are.
 int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
+  if (params.mode == StudioMode::picture) {
+    // The line's points: at most the room inside the margins in the darkest cells
+    // tone_mesh makes, their sides kPassesPerCell (1.61) spacings, with 5 cycle segments
+    // a cell (a black picture's line has 4.5), of `samples` points each.
+    const ImageJob& job = params.image;
+    const Texture& picture = surface.picture;
+    double area = std::max(0.0, job.paper.width - 2 * job.paper.margin) * std::max(0.0, job.paper.height - 2 * job.paper.margin);
+    if (job.width && picture.width > 0) area = *job.width * (*job.width * picture.height / picture.width);
+    const double cell = 1.61 * job.tone.spacing;
+    return int64_t(std::min(area / (cell * cell), 1e12)) * 5 * job.curve.samples;
+  }
   const PolygonMesh& mesh = surface.repaired.mesh;
   int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size()), edges = surface.repaired.connectivity.num_edges();
   const bool duotone = params.mode == StudioMode::duotone;
@@ -305,6 +341,7 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   params.wire.method = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon ? WireMethod::variable : WireMethod::constant;
   params.wire.shape = mode == StudioMode::constant_ribbon || mode == StudioMode::variable_ribbon ? WireShape::ribbon : WireShape::wire;
   if (!params.preview) return params;
+  params.image.curve.samples = std::min(params.image.curve.samples, 2);
   int& samples = params.wire.curve.curve.samples;
   samples = std::min(samples, 2);
   // Two rounds of relaxation show the spacing (the full result that follows relaxes all):
@@ -334,14 +371,30 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   StudioResult result{.params = params};
   const StudioMode mode = params.mode;
   const RepairResult& input = surface.repaired;
+  const bool picture = !surface.picture.empty();
+  if (picture != (mode == StudioMode::picture))
+    throw UsageError(surface.name + (picture ? ": a picture: only picture mode draws it (open a mesh for the other modes)"
+                                             : ": a mesh: picture mode draws a picture (open a .png or .jpg)"));
   // The library's refusals do not know the upload's name; the user should still read it.
   const auto about_surface = [&](auto&& work) {
     try {
       return work();
     } catch (const TopologyError& e) {
       throw TopologyError(surface.name + ": " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(surface.name + ": " + e.what());
     }
   };
+  if (mode == StudioMode::picture) {
+    ImageJob job = params.image;
+    job.cycle.count_leaves = true;
+    result.picture = about_surface([&] { return make_line_picture(surface.picture, job, nullptr, progress); });
+    result.curve.curves = result.picture.curve;
+    result.curve.cycle.leaves = result.picture.leaves;
+    result.curve_length = result.picture.drawing.drawn_length;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
   if (mode == StudioMode::duotone) {
     const DuotoneJob& job = params.duotone;
     Duotone duotone = about_surface([&] { return make_duotone(input.mesh, input.connectivity, job, progress); });
@@ -425,7 +478,12 @@ std::string studio_stats_json(const StudioResult& result) {
     stats["gap_median"] = result.evenness->gap_median;
     stats["gap_cv"] = result.evenness->gap_cv;
   }
-  if (result.params.mode == StudioMode::duotone) {
+  if (result.params.mode == StudioMode::picture) {
+    const Drawing& drawing = result.picture.drawing;
+    stats["cells"] = result.picture.cells;
+    stats["paper"] = {drawing.paper.width, drawing.paper.height};
+    stats["pen_up_travel"] = drawing.travel;
+  } else if (result.params.mode == StudioMode::duotone) {
     stats["quads"] = result.curve.quads.num_quads();
     stats["faces"] = result.mesh.num_faces();
     // What the atlas depends on: the page fetches texture.png again only when it changes.
@@ -467,11 +525,11 @@ StudioFile parse_studio_file(std::string_view name) {
       {"surface.bin", StudioFile::surface}, {"view.bin", StudioFile::view},      {"texture.png", StudioFile::texture},
       {"result.stl", StudioFile::stl},
       {"result.3mf", StudioFile::threemf},  {"result.glb", StudioFile::glb},     {"result.zip", StudioFile::obj_zip},
-      {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png}};
+      {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png},     {"duotone.svg", StudioFile::duotone_svg}};
   for (const auto& [file_name, file] : table)
     if (name == file_name) return file;
   throw UsageError("no result file of that name (expected surface.bin, view.bin, texture.png, result.stl, result.3mf, "
-                   "result.glb, result.zip, curve.svg or render.png)");
+                   "result.glb, result.zip, curve.svg, render.png or duotone.svg)");
 }
 
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
@@ -691,11 +749,15 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   const std::string base = sanitized(fs::path(surface.name).stem().string()) + "_" + mode_name(result.params.mode) +
                            (result.params.preview ? "_preview" : "");
   const bool curve_mode = result.params.mode == StudioMode::curve;
+  const bool picture_mode = result.params.mode == StudioMode::picture;
   const bool textured = !result.appearance.materials.empty();
   const bool millimetres = (result.params.mode == StudioMode::duotone ? result.params.duotone.model_size
                                                                       : result.params.wire.curve.model_size)
                                .has_value();
   auto mesh_file = [&](const char* extension, const char* type) {
+    if (picture_mode)
+      throw UsageError(std::string("picture mode makes no mesh to save as ") + extension +
+                       ": its line downloads as curve.svg or result.zip");
     if (curve_mode)
       throw UsageError(std::string("curve mode makes no mesh to save as ") + extension +
                        ": choose a wire or ribbon mode (the curve downloads as curve.svg or result.zip)");
@@ -703,9 +765,11 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   };
   switch (file) {
   case StudioFile::surface:
+    if (!surface.picture.empty()) throw UsageError("surface.bin: a picture has no surface (its drawing is curve.svg)");
     return {studio_view_bytes(surface.repaired.mesh, {}), "application/octet-stream", "surface.bin"};
   case StudioFile::view:
-    return {curve_mode ? studio_view_bytes({}, result.curve.curves) : studio_view_bytes(result.mesh, {}, result.appearance),
+    return {curve_mode || picture_mode ? studio_view_bytes({}, result.curve.curves)
+                                       : studio_view_bytes(result.mesh, {}, result.appearance),
             "application/octet-stream", "view.bin"};
   case StudioFile::texture: {
     if (!textured || result.appearance.materials[0].texture.empty())
@@ -724,7 +788,9 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   }
   case StudioFile::obj_zip: {
     std::vector<NamedFile> files;
-    if (curve_mode) {
+    if (picture_mode) {
+      files.push_back({base + ".obj", polylines_file_bytes(line_picture_curve(result.picture), base + ".obj")});
+    } else if (curve_mode) {
       files.push_back({base + ".obj", polylines_file_bytes(result.curve.curves, base + ".obj")});
     } else {
       Appearance appearance = textured ? result.appearance
@@ -735,6 +801,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     return {zip_archive(files), "application/zip", base + ".zip"};
   }
   case StudioFile::svg: {
+    if (picture_mode) return {drawing_svg(result.picture.drawing, result.params.image.pen), "image/svg+xml", base + ".svg"};
     // A duotone's separating curves are hidden by its painted surface, the others by the
     // surface their curve lies on. With the page's camera, the plotter drawing of the view
     // on an A4 sheet turned as the view is; without, what `meander curve -o .svg` writes.
@@ -747,6 +814,9 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     return {drawing_svg(drawing, options.pen), "image/svg+xml", base + ".svg"};
   }
   case StudioFile::png: {
+    if (picture_mode)
+      return {png_file_bytes(drawing_image(result.picture.drawing, result.params.image.pen, picture.width, picture.height)),
+              "image/png", base + ".png"};
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
                         : curve_mode ? curve_scene(result.curve)
@@ -755,6 +825,9 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
                 render(scene, {.width = picture.width, .height = picture.height, .samples = 4, .camera = picture.camera})),
             "image/png", base + ".png"};
   }
+  case StudioFile::duotone_svg:
+    if (!picture_mode) throw UsageError("duotone.svg: only a picture's line bounds a duotone drawn on paper");
+    return {line_picture_duotone_svg(result.picture, result.params.image), "image/svg+xml", base + "_duotone.svg"};
   }
   throw UsageError("unknown result file");
 }

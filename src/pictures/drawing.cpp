@@ -434,12 +434,12 @@ std::string duotone_svg(const Drawing& d, const Rect& area, Rgb inside, Rgb outs
   return out;
 }
 
-Image drawing_image(const Drawing& d, double pen, int32_t width) {
-  const double height_px = std::round(width * d.paper.height / d.paper.width);
-  if (width < 1 || width > 16384 || !(height_px >= 1 && height_px <= 16384))
-    throw UsageError("picture of " + std::to_string(width) + " x " + std::to_string(height_px) +
+Image drawing_image(const Drawing& d, double pen, int32_t width, int32_t height) {
+  if (width < 1 || width > 16384 || height < 1 || height > 16384)
+    throw UsageError("picture of " + std::to_string(width) + " x " + std::to_string(height) +
                      " pixels: each side must be 1 to 16384");
-  const int32_t w = width, h = int32_t(height_px);
+  const int32_t w = std::max<int32_t>(1, int32_t(std::min<double>(width, std::floor(height * d.paper.width / d.paper.height))));
+  const int32_t h = std::max<int32_t>(1, int32_t(std::round(w * d.paper.height / d.paper.width)));
   const double scale = w / d.paper.width; // pixels a millimetre
   const double radius = std::max(0.5, pen * scale / 2);
   // Each pixel's ink, the most any stroke gives it: a stroke's coverage falls from 1 to

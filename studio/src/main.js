@@ -1,5 +1,6 @@
 // The studio page: a three.js view of the surface and the result, the controls for every
-// parameter of `meander curve` and `meander wire`, and the JSON API of docs/studio.md.
+// parameter of `meander curve`, `wire`, `duotone` and `image` (a picture's drawing, shown
+// as its SVG), and the JSON API of docs/studio.md.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
@@ -160,8 +161,8 @@ function applySurfaceStyle() {
 }
 
 // ---- state and the API ------------------------------------------------------------------
-const state = { session: null, revision: 0, busy: false, lastUpdateMs: null, phases: null, error: null, stats: null,
-  surfaceBox: null, full: null, stale: false };
+const state = { session: null, picture: false, revision: 0, busy: false, lastUpdateMs: null, phases: null, error: null,
+  stats: null, surfaceBox: null, full: null, stale: false };
 // What became of the full result asked after the last change (state.full): null (it is
 // on screen, or none was asked), 'pending', 'stopped', 'refused' or 'failed'; and whether
 // the view shows a result of other settings than the controls' (state.stale): a preview,
@@ -177,8 +178,12 @@ window.studio = {
   // For the browser test: the next request's job waits on the server until cancelled
   // (a server started with --test-hooks), so that a test holds it in flight.
   holdNext: () => { holdNext = true; },
-  // What the browser test reads: the result in the scene.
+  // What the browser test reads: the result in the scene, or a picture's drawing.
   resultInfo() {
+    if (state.picture) {
+      const img = $('drawing');
+      return img.complete && img.naturalWidth > 0 ? { drawing: true, width: img.naturalWidth, height: img.naturalHeight } : null;
+    }
     if (!resultObject) return null;
     const box = new THREE.Box3().setFromObject(resultObject);
     return {
@@ -334,6 +339,13 @@ async function makeOne(preview, ticket) {
     method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body), signal,
   })).json();
   lap('make');
+  if (state.picture) {
+    await showDrawing(await (await api(`/api/result/${state.session}/curve.svg`, { signal })).blob(), ticket);
+    if (ticket !== job) return;
+    lap('draw');
+    shown(stats, preview, start, phases);
+    return;
+  }
   const buffer = await (await api(`/api/result/${state.session}/view.bin`, { signal })).arrayBuffer();
   lap('fetch');
   if (ticket !== job) return;
@@ -361,6 +373,11 @@ async function makeOne(preview, ticket) {
   draw();
   renderer.getContext().finish();
   lap('draw');
+  shown(stats, preview, start, phases);
+}
+
+// A result is on screen: the state and the stats say so.
+function shown(stats, preview, start, phases) {
   state.lastUpdateMs = performance.now() - start;
   state.phases = phases;
   state.revision = stats.revision;
@@ -369,6 +386,28 @@ async function makeOne(preview, ticket) {
   state.stale = preview;
   showStats(stats);
   showError(null);
+}
+
+// A picture's drawing, its SVG shown as an image of the sheet; the one before is let go
+// once the new one is decoded.
+let drawingUrl = null;
+async function showDrawing(svg, ticket) {
+  const url = URL.createObjectURL(svg);
+  const img = new Image();
+  img.src = url;
+  try {
+    await img.decode();
+  } catch {
+    URL.revokeObjectURL(url);
+    throw new Error('the browser could not draw the drawing\'s SVG');
+  }
+  if (ticket !== job) {
+    URL.revokeObjectURL(url);
+    return;
+  }
+  $('drawing').src = url;
+  if (drawingUrl) URL.revokeObjectURL(drawingUrl);
+  drawingUrl = url;
 }
 
 // Stops the work in flight: the view keeps what it shows.
@@ -389,19 +428,44 @@ async function loadSurface(reply) {
   state.session = reply.session;
   state.revision = 0;
   state.stats = null;
-  const repairs = reply.repairs.length ? ` — repaired: ${reply.repairs.join('; ')}` : '';
-  $('mesh-name').textContent = `${reply.name}: ${plural(reply.faces, 'face', 'faces')}${repairs}`;
-  const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
-  const { geometry, placed } = await parseView(buffer);
-  surfaceObject = replace(surfaceObject, placed(new THREE.Mesh(geometry, surfaceMaterial)));
-  state.surfaceBox = new THREE.Box3().setFromObject(surfaceObject);
-  showSpacing();
   resultObject = replace(resultObject, null);
+  $('drawing').removeAttribute('src');
+  openedKind(reply.picture !== undefined);
+  if (state.picture) {
+    $('mesh-name').textContent = `${reply.name}: ${reply.picture.width.toLocaleString()} × ${reply.picture.height.toLocaleString()} pixels`;
+    surfaceObject = replace(surfaceObject, null);
+    state.surfaceBox = null;
+  } else {
+    const repairs = reply.repairs.length ? ` — repaired: ${reply.repairs.join('; ')}` : '';
+    $('mesh-name').textContent = `${reply.name}: ${plural(reply.faces, 'face', 'faces')}${repairs}`;
+    const buffer = await (await api(`/api/result/${reply.session}/surface.bin`)).arrayBuffer();
+    const { geometry, placed } = await parseView(buffer);
+    surfaceObject = replace(surfaceObject, placed(new THREE.Mesh(geometry, surfaceMaterial)));
+    state.surfaceBox = new THREE.Box3().setFromObject(surfaceObject);
+  }
+  showSpacing();
   $('welcome').hidden = true;
   $('stats').innerHTML = '';
   applySurfaceStyle();
   fit();
   await update(['preview', 'full']);
+}
+
+// A picture takes picture mode alone, a mesh every other mode: the menu offers what the
+// opened file takes, and a mode the file does not take gives way to one it does (the
+// last mesh mode for a mesh).
+let meshMode = 'curve';
+function openedKind(picture) {
+  state.picture = picture;
+  for (const option of $('mode').options) option.disabled = (option.value === 'picture') !== picture;
+  if (($('mode').value === 'picture') !== picture) {
+    $('mode').value = picture ? 'picture' : meshMode;
+    modeChanged();
+    record();
+  }
+  $('view').hidden = picture;
+  $('sheet').hidden = !picture;
+  if (!picture) resize();
 }
 
 async function upload(file) {
@@ -414,8 +478,8 @@ async function upload(file) {
     return;
   }
   const extension = file.name.includes('.') ? file.name.slice(file.name.lastIndexOf('.')).toLowerCase() : '';
-  if (!info.formats.includes(extension)) {
-    showError(`${file.name}: not a mesh file the studio reads (it reads ${info.formats.join(', ')})`);
+  if (!info.formats.includes(extension) && !info.pictures.includes(extension)) {
+    showError(`${file.name}: not a mesh file or picture the studio reads (it reads ${info.formats.join(', ')}; ${info.pictures.join(', ')})`);
     return;
   }
   if (file.size > info.max_upload) {
@@ -478,6 +542,16 @@ function showSpacing() {
 function params() {
   const mode = $('mode').value;
   const sized = modelSizeMillimetres() !== null;
+  // A picture's lengths are millimetres on paper; its job takes the shared curve controls.
+  if (mode === 'picture') {
+    return {
+      session: state.session, mode, paper: $('paper').value, margin: Number($('margin').value), pen: Number($('pen').value),
+      spacing: Number($('line-spacing').value), max_spacing: Number($('max-spacing').value), gamma: Number($('gamma').value),
+      invert: $('invert').checked, branches: $('branches-on').checked ? Number($('branches').value) : 'none',
+      tree: $('tree').value, seed: Number($('seed').value), smooth: $('smooth').value, samples: Number($('samples').value),
+      colors: `${$('color0').value},${$('color1').value}`,
+    };
+  }
   return {
     session: state.session,
     mode,
@@ -509,7 +583,13 @@ function showStats(stats) {
   const what = { stopped: 'was stopped', refused: 'was refused', failed: 'failed' }[state.full];
   const of = stats.preview ? (state.full === 'pending' ? 'preview (the full result follows)' : what ? `preview (the full result ${what})` : 'preview')
     : state.stale && what ? `the result before the change (the new one ${what})` : 'full result';
-  const rows = [
+  const rows = stats.mode === 'picture' ? [
+    ['stats of', of],
+    ['cells', stats.cells.toLocaleString()],
+    ['sheet', `${stats.paper.map((x) => +x.toFixed(1)).join(' × ')} mm`],
+    ['line length', `${(stats.curve_length / 1000).toPrecision(4)} m`],
+    ['pen-up travel', `${stats.pen_up_travel.toFixed(0)} mm`],
+  ] : [
     ['stats of', of],
     ['triangles', stats.triangles.toLocaleString()],
     [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
@@ -517,7 +597,7 @@ function showStats(stats) {
   ];
   if (stats.mode === 'duotone') {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
-  } else if (stats.mode !== 'curve') {
+  } else if (stats.mode !== 'curve' && stats.mode !== 'picture') {
     rows.push(['faces', stats.faces.toLocaleString()]);
     // Over the preview's budget a wire is previewed as its ribbon, a few times lighter.
     if (stats.preview_as_ribbon) rows.push(['drawn as', 'its ribbon, until the full wire comes']);
@@ -544,10 +624,10 @@ function showStats(stats) {
 }
 
 function updateDownloads() {
-  const curve = $('mode').value === 'curve';
+  const noMesh = ['curve', 'picture'].includes($('mode').value);
   for (const a of document.querySelectorAll('#downloads a')) {
     // A preview is not offered for download: the full result follows it.
-    const enabled = state.revision > 0 && !state.busy && !state.stale && !(curve && a.hasAttribute('data-mesh'));
+    const enabled = state.revision > 0 && !state.busy && !state.stale && !(noMesh && a.hasAttribute('data-mesh'));
     a.setAttribute('aria-disabled', String(!enabled));
     if (enabled) {
       a.href = `/api/result/${state.session}/${a.dataset.file}`;
@@ -576,7 +656,7 @@ for (const file of ['render.png', 'curve.svg']) {
 // Every control the settings are made of, as the URL and the local storage keep them.
 const settingIds = ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
   'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
-  'texture-size', 'subdivide', 'surface'];
+  'texture-size', 'subdivide', 'surface', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
 const valueOf = (el) => (el.type === 'checkbox' ? (el.checked ? '1' : '0') : el.value);
 const defaults = Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
 function settings() {
@@ -591,6 +671,8 @@ function applySettings(values) {
     if (el.type === 'checkbox') el.checked = value === '1';
     else el.value = value;
   }
+  // The opened file keeps a mode it takes (an undo past the opening of a picture).
+  if (state.session && ($('mode').value === 'picture') !== state.picture) $('mode').value = state.picture ? 'picture' : meshMode;
   previousMode = $('mode').value;
   syncControls();
 }
@@ -675,7 +757,7 @@ function showModeControls() {
 // parameter's `--help` (GET /api/parameters, for the mode's command); the page's own
 // controls have theirs here.
 const pageHelp = {
-  mode: 'what to make: the curve, a wire or ribbon along it (constant: a tube of one radius; variable: slabs that fill the surface), or a two-colour surface split by the curve',
+  mode: 'what to make: the curve, a wire or ribbon along it (constant: a tube of one radius; variable: slabs that fill the surface), or a two-colour surface split by the curve; of a picture, its drawing with one closed line',
   'radius-auto': 'the largest radius that keeps the wire clear of itself',
   surface: 'how the input surface is drawn behind the result',
   nozzle: 'the printer\'s nozzle width in millimetres: with a model size, the wire must be 2 nozzles thick and its parts a nozzle apart',
@@ -684,7 +766,7 @@ let parameterHelp = null;
 function helpFor(id) {
   const name = $(id).dataset.help ?? id.replaceAll('-', '_');
   const mode = $('mode').value;
-  const list = parameterHelp?.[mode === 'curve' ? 'curve' : mode === 'duotone' ? 'duotone' : 'wire'];
+  const list = parameterHelp?.[['curve', 'duotone', 'picture'].includes(mode) ? mode : 'wire'];
   return list?.find((p) => p.name === name)?.help ?? pageHelp[id] ?? null;
 }
 function showHelp() {
@@ -738,13 +820,15 @@ for (const id of settingIds) {
 // the previous mode's default was chosen.
 let previousMode = $('mode').value;
 const defaultTree = (mode) => (mode.startsWith('variable') ? 'shaped' : 'random');
-$('mode').addEventListener('input', () => {
+function modeChanged() {
   const mode = $('mode').value;
   if ((mode === 'duotone') !== (previousMode === 'duotone')) $('quad').value = mode === 'duotone' ? 'catmull-clark' : 'dual-simplest';
   if ($('tree').value === defaultTree(previousMode)) $('tree').value = defaultTree(mode);
   previousMode = mode;
+  if (mode !== 'picture') meshMode = mode;
   showModeControls();
-}, { capture: true });
+}
+$('mode').addEventListener('input', modeChanged, { capture: true });
 // The enabled state of the controls that follow others.
 function syncControls() {
   $('radius').disabled = $('radius-auto').checked;
