@@ -328,7 +328,13 @@ std::string upload_target(std::span<const uint8_t> input) {
   const std::string_view all(reinterpret_cast<const char*>(input.data()), input.size());
   const size_t newline = std::min(all.find('\n'), all.size());
   return refusals_pass([&] {
-    const StudioSurface surface = load_studio_surface(all.substr(0, newline), all.substr(std::min(newline + 1, all.size())));
+    // As the server reads an upload, its picture size bounded as the server's default does.
+    const StudioSurface surface = load_studio_surface(all.substr(0, newline), all.substr(std::min(newline + 1, all.size())),
+                                                      0, StudioServerOptions{}.max_pixels);
+    if (!surface.picture.empty())
+      return surface.picture.rgba.size() == size_t(surface.picture.width) * size_t(surface.picture.height) * 4
+                 ? std::string()
+                 : "a picture whose pixels are not width x height x 4 bytes";
     return mesh_problem(surface.repaired.mesh, true);
   });
 }
@@ -336,7 +342,8 @@ std::string upload_target(std::span<const uint8_t> input) {
 std::string http_target(std::span<const uint8_t> bytes) {
   // One server for the whole run, its limits small enough that no request's work takes
   // long; sessions come and go as the inputs make them.
-  static StudioServer server({.port = 0, .max_upload = size_t(1) << 20, .max_faces = 5'000, .max_result = 50'000});
+  static StudioServer server(
+      {.port = 0, .max_upload = size_t(1) << 20, .max_faces = 5'000, .max_pixels = 1 << 16, .max_result = 50'000});
   static const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                                   "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
   static const std::string upload_body = "--b\r\nContent-Disposition: form-data; name=\"mesh\"; filename=\"cube.obj\"\r\n\r\n" +

@@ -677,6 +677,7 @@ TEST(Studio, APictureTakesPictureModeAlone) {
   EXPECT_THROW(load_studio_surface("broken.png", "not a png"), InputError);
   // A picture's lengths are millimetres on paper: units need no model size there.
   EXPECT_EQ(parse_make_request(R"({"session": "s", "mode": "picture", "spacing": "1mm", "pen": "0.05cm"})").params.image.pen, 0.5);
+  EXPECT_TRUE(parse_make_request(R"({"session": "s", "mode": "picture", "invert": true})").params.image.tone.invert);
   EXPECT_NE(message_of(R"({"session": "s", "mode": "picture", "gamma": 20})").find("gamma"), std::string::npos);
   EXPECT_EQ(message_of(R"({"session": "s", "mode": "picture", "max_pixels": 20})"), "\"max_pixels\": unknown parameter");
 }
