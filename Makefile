@@ -13,8 +13,9 @@ DEBIAN_PACKAGES := cmake g++ make libcli11-dev nlohmann-json3-dev libgtest-dev l
 DEBIAN_PACKAGES += libcpp-httplib-dev libmeshoptimizer-dev
 # The Python package (python/, for Debian's /usr/bin/python3) and its tests.
 DEBIAN_PACKAGES += pybind11-dev python3-dev python3-numpy python3-pytest
-# rsvg-convert: the tests rasterise `meander image`'s SVG with a renderer that is not ours.
-DEBIAN_PACKAGES += librsvg2-bin
+# rsvg-convert: the tests rasterise `meander image`'s SVG with a renderer that is not ours;
+# inkscape: they check that Inkscape reads a drawing's layers and paths.
+DEBIAN_PACKAGES += librsvg2-bin inkscape
 
 .PHONY: deps build install-python blender-addon demo test studio browser blender validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 

@@ -6,9 +6,10 @@
 // the scene changed, downloads the STL and checks it is a valid binary STL; cancels a job
 // held on the server by a newer change and by Stop; shows a full result refused as too
 // large; shows a duotone; restores the settings from the URL after a reload; lays the
-// page out 390 px wide; draws a picture with one line and downloads its SVGs; runs axe-core (no serious or critical violation) on each state;
+// page out 390 px wide; shows the plotter drawing of the view; draws a picture with one
+// line and downloads its SVGs; runs axe-core (no serious or critical violation) on each state;
 // shows a bad file's error; and saves screenshots to OUTPUT_FOLDER (studio_e2e*.png: the
-// welcome, a variable wire, a duotone, a phone, a picture).
+// welcome, a variable wire, its plotter drawing, a duotone, a phone, a picture).
 // Exits 0 with a message, without testing, only when Chromium is not installed and CI is
 // not set.
 import { spawn } from 'node:child_process';
@@ -261,6 +262,20 @@ try {
   const seen = await page.evaluate(() => window.seenStats);
   check(seen.length >= 2 && seen[0].startsWith('preview') && seen.at(-1) === 'full result',
     `a seed change shows a preview, then the full result (stats seen: ${JSON.stringify(seen)})`);
+
+  step('the plotter drawing of the view');
+  // Checked, the view shows the plotter drawing of the curve as the 3D view showed it;
+  // unchecked, the 3D view comes back.
+  await page.check('#plotter');
+  await page.waitForFunction(() => window.studio.idle() && window.studio.resultInfo()?.drawing);
+  const plotted = await page.evaluate(() => ({ info: window.studio.resultInfo(), sheet: !document.getElementById('sheet').hidden,
+    view: !document.getElementById('view').hidden }));
+  check(plotted.sheet && !plotted.view && plotted.info.width > plotted.info.height,
+    `the plotter drawing takes the view's place, on a sheet turned as the view is (${JSON.stringify(plotted)})`);
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_plotter.png') });
+  await page.uncheck('#plotter');
+  check(await page.isVisible('#view') && (await page.evaluate(() => window.studio.resultInfo())).drawing === undefined,
+    'unchecked, the 3D view is back');
 
   step('a held job replaced');
   // Cancel and replace: a job held on the server (the test hook: no test waits on a slow

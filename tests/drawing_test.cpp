@@ -10,7 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -138,6 +141,43 @@ TEST(CliDraw, APlotterDrawingOfAMeshFitsItsSheetOneLayerPerComponent) {
   const std::string again = (dir / "again.svg").string();
   ASSERT_EQ(run_cli({"draw", mesh, "-o", again, "--paper", "A5", "--landscape", "--margin", "1cm", "--pen", "0.5"}).exit_code, 0);
   EXPECT_EQ(read_file(again), text);
+}
+
+// Inkscape, which plotter users send drawings through (the AxiDraw's driver is an
+// extension of it), reads a drawing as Meander means it: `inkscape --query-all` lists one
+// layer per curve and every path, each inside the sheet (its extents are in px, 96 an inch).
+TEST(CliDraw, InkscapeListsALayerPerCurveAndEveryPathOnTheSheet) {
+  MEANDER_REQUIRE(std::system("command -v inkscape > /dev/null 2>&1") == 0, "inkscape (Debian inkscape) is not installed");
+  const auto dir = output_dir();
+  const std::string mesh = (dir / "two.obj").string(), svg = (dir / "two.svg").string();
+  write_mesh(test::side_by_side(meander::sphere(800), meander::torus(800), {3, 0, 0}), mesh);
+  ASSERT_EQ(run_cli({"draw", mesh, "-o", svg, "--paper", "A5", "--landscape"}).exit_code, 0);
+  int layers = 0;
+  const size_t paths = read_svg_paths(read_file(svg), layers).size();
+  ASSERT_EQ(layers, 2);
+  // Inkscape keeps its preferences under HOME: the test's own folder, not the user's.
+  const std::string command = "HOME='" + dir.string() + "' inkscape --query-all '" + svg + "' 2> /dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::map<std::string, std::array<double, 4>> objects; // id: x, y, width, height
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe)) {
+    char id[256];
+    std::array<double, 4> box{};
+    if (std::sscanf(line, "%255[^,],%lf,%lf,%lf,%lf", id, &box[0], &box[1], &box[2], &box[3]) == 5) objects[id] = box;
+  }
+  ASSERT_EQ(pclose(pipe), 0);
+  size_t listed_paths = 0;
+  const double px = 96 / 25.4; // px a millimetre
+  for (const auto& [id, box] : objects) {
+    listed_paths += id.starts_with("path");
+    EXPECT_GE(box[0], 0) << id;
+    EXPECT_GE(box[1], 0) << id;
+    EXPECT_LE(box[0] + box[2], 210 * px) << id;
+    EXPECT_LE(box[1] + box[3], 148 * px) << id;
+  }
+  EXPECT_TRUE(objects.contains("layer1") && objects.contains("layer2")) << objects.size() << " objects";
+  EXPECT_EQ(listed_paths, paths);
 }
 
 TEST(CliDraw, ACurveFileIsDrawnHiddenByItsOccluder) {

@@ -53,8 +53,12 @@ let loadedTexture = null; // stats.texture of the atlas on duotoneMaterial
 let surfaceObject = null;
 let resultObject = null;
 
+// The view's size when last shown: what render.png and curve.svg are drawn at, also
+// while the sheet takes the view's place.
+let viewSize = { w: 1200, h: 900 };
 function resize() {
   const { clientWidth: w, clientHeight: h } = container;
+  if (w > 0 && h > 0) viewSize = { w: Math.max(16, Math.round(w)), h: Math.max(16, Math.round(h)) };
   renderer.setSize(w, h, false);
   camera.aspect = w / Math.max(h, 1);
   camera.updateProjectionMatrix();
@@ -172,15 +176,15 @@ window.studio = {
   state,
   // The latency script (latency.mjs) times a preview and a full update through this.
   make: (preview) => update([preview ? 'preview' : 'full']),
-  // Nothing in flight or about to be asked (a change within the debounce): what the
-  // browser test waits for, so that no pause of a busy machine can fool it.
-  idle: () => !state.busy && debounce === null,
+  // Nothing in flight or about to be asked (a change within the debounce, a plotter
+  // drawing): what the browser test waits for, so that no pause of a busy machine can fool it.
+  idle: () => !state.busy && debounce === null && plotterTicket === null,
   // For the browser test: the next request's job waits on the server until cancelled
   // (a server started with --test-hooks), so that a test holds it in flight.
   holdNext: () => { holdNext = true; },
-  // What the browser test reads: the result in the scene, or a picture's drawing.
+  // What the browser test reads: the result in the scene, or the drawing in its place.
   resultInfo() {
-    if (state.picture) {
+    if (sheetShown()) {
       const img = $('drawing');
       return img.complete && img.naturalWidth > 0 ? { drawing: true, width: img.naturalWidth, height: img.naturalHeight } : null;
     }
@@ -339,9 +343,10 @@ async function makeOne(preview, ticket) {
     method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body), signal,
   })).json();
   lap('make');
+  const current = () => ticket === job;
   if (state.picture) {
-    await showDrawing(await (await api(`/api/result/${state.session}/curve.svg`, { signal })).blob(), ticket);
-    if (ticket !== job) return;
+    await showDrawing(await (await api(`/api/result/${state.session}/curve.svg`, { signal })).blob(), current);
+    if (!current()) return;
     lap('draw');
     shown(stats, preview, start, phases);
     return;
@@ -373,6 +378,11 @@ async function makeOne(preview, ticket) {
   draw();
   renderer.getContext().finish();
   lap('draw');
+  if ($('plotter').checked) {
+    await showDrawing(await (await api(`/api/result/${state.session}/curve.svg?${viewQuery()}`, { signal })).blob(), current);
+    if (!current()) return;
+    lap('plotter');
+  }
   shown(stats, preview, start, phases);
 }
 
@@ -388,10 +398,10 @@ function shown(stats, preview, start, phases) {
   showError(null);
 }
 
-// A picture's drawing, its SVG shown as an image of the sheet; the one before is let go
-// once the new one is decoded.
+// A drawing, its SVG shown as an image of the sheet, unless `current()` says it is no
+// longer wanted once decoded; the one before is let go.
 let drawingUrl = null;
-async function showDrawing(svg, ticket) {
+async function showDrawing(svg, current) {
   const url = URL.createObjectURL(svg);
   const img = new Image();
   img.src = url;
@@ -401,7 +411,7 @@ async function showDrawing(svg, ticket) {
     URL.revokeObjectURL(url);
     throw new Error('the browser could not draw the drawing\'s SVG');
   }
-  if (ticket !== job) {
+  if (!current()) {
     URL.revokeObjectURL(url);
     return;
   }
@@ -463,9 +473,30 @@ function openedKind(picture) {
     modeChanged();
     record();
   }
-  $('view').hidden = picture;
-  $('sheet').hidden = !picture;
-  if (!picture) resize();
+  showSheet();
+}
+
+// The sheet in place of the 3D view: a picture's drawing, or, with *Plotter drawing*
+// checked, the drawing of the curve as the 3D view last showed it (uncheck to turn it).
+const sheetShown = () => state.picture || $('plotter').checked;
+function showSheet() {
+  const sheet = sheetShown();
+  $('view').hidden = sheet;
+  $('sheet').hidden = !sheet;
+  if (!sheet) resize();
+}
+let plotterTicket = null;
+async function drawPlotter() {
+  if (!sheetShown() || state.picture || state.revision === 0 || job) return;
+  const ticket = plotterTicket = {};
+  try {
+    const svg = await (await api(`/api/result/${state.session}/curve.svg?${viewQuery()}`)).blob();
+    await showDrawing(svg, () => ticket === plotterTicket);
+  } catch (e) {
+    showError(e.message);
+  } finally {
+    if (ticket === plotterTicket) plotterTicket = null;
+  }
 }
 
 async function upload(file) {
@@ -641,14 +672,14 @@ function updateDownloads() {
 }
 // The render and the plotter drawing as the view shows them: the camera on screen, at the
 // view's size (the drawing's sheet turned as the view is).
+function viewQuery() {
+  const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
+  return `eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}&fov=${camera.fov}&size=${viewSize.w}x${viewSize.h}`;
+}
 for (const file of ['render.png', 'curve.svg']) {
   $('downloads').querySelector(`a[data-file="${file}"]`).addEventListener('click', (e) => {
     const a = e.currentTarget;
-    if (!a.href) return;
-    const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
-    const { clientWidth: w, clientHeight: h } = container;
-    a.href = `/api/result/${state.session}/${file}?eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}` +
-      `&fov=${camera.fov}&size=${Math.max(16, Math.round(w))}x${Math.max(16, Math.round(h))}`;
+    if (a.href) a.href = `/api/result/${state.session}/${file}?${viewQuery()}`;
   });
 }
 
@@ -656,7 +687,7 @@ for (const file of ['render.png', 'curve.svg']) {
 // Every control the settings are made of, as the URL and the local storage keep them.
 const settingIds = ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
   'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
-  'texture-size', 'subdivide', 'surface', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
+  'texture-size', 'subdivide', 'surface', 'plotter', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
 const valueOf = (el) => (el.type === 'checkbox' ? (el.checked ? '1' : '0') : el.value);
 const defaults = Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
 function settings() {
@@ -760,6 +791,7 @@ const pageHelp = {
   mode: 'what to make: the curve, a wire or ribbon along it (constant: a tube of one radius; variable: slabs that fill the surface), or a two-colour surface split by the curve; of a picture, its drawing with one closed line',
   'radius-auto': 'the largest radius that keeps the wire clear of itself',
   surface: 'how the input surface is drawn behind the result',
+  plotter: 'show the pen plotter\'s drawing of the curve as the view shows it, its back hidden, on A4 (the Plotter SVG download); uncheck to turn the view again',
   nozzle: 'the printer\'s nozzle width in millimetres: with a model size, the wire must be 2 nozzles thick and its parts a nozzle apart',
 };
 let parameterHelp = null;
@@ -777,6 +809,19 @@ function showHelp() {
     el.title = text;
   }
 }
+// A help text that goes away moves up what is below it. When a press moves the focus, the
+// help of the control it leaves waits for the release, so that the click lands on what
+// was pressed (else a checkbox below a focused field moved away under the pointer).
+let pressed = false;
+const released = [];
+document.addEventListener('pointerdown', () => { pressed = true; }, true);
+for (const end of ['pointerup', 'pointercancel']) {
+  document.addEventListener(end, () => {
+    pressed = false;
+    setTimeout(() => released.splice(0).forEach((f) => f()));
+  }, true);
+}
+const afterRelease = (f) => (pressed ? released.push(f) : f());
 function addHelp() {
   for (const id of settingIds) {
     if (!helpFor(id) || $(`help-${id}`)) continue;
@@ -791,7 +836,7 @@ function addHelp() {
     el.setAttribute('aria-describedby', help.id);
     const show = (on) => () => { help.hidden = !on && document.activeElement !== el; };
     el.addEventListener('focus', show(true));
-    el.addEventListener('blur', show(false));
+    el.addEventListener('blur', () => afterRelease(show(false)));
     el.addEventListener('mouseenter', show(true));
     el.addEventListener('mouseleave', show(false));
   }
@@ -806,7 +851,7 @@ for (const output of document.querySelectorAll('output[for]')) {
   show();
 }
 for (const id of settingIds) {
-  if (id === 'surface') continue;
+  if (id === 'surface' || id === 'plotter') continue;
   const el = $(id);
   // Typed values apply on Enter or when the field is left, not at every keystroke.
   const typed = ['text', 'number', 'color'].includes(el.type);
@@ -838,6 +883,7 @@ function syncControls() {
   showSpacing();
   showModeControls();
   applySurfaceStyle();
+  showSheet();
 }
 for (const id of ['radius-auto', 'spacing-on', 'branches-on']) $(id).addEventListener('input', syncControls, { capture: true });
 for (const id of ['spacing', 'model-size']) $(id).addEventListener('input', showSpacing);
@@ -848,6 +894,11 @@ $('new-seed').addEventListener('click', () => {
 $('surface').addEventListener('input', () => {
   applySurfaceStyle();
   record();
+});
+$('plotter').addEventListener('input', () => {
+  showSheet();
+  record();
+  drawPlotter();
 });
 $('fit').addEventListener('click', fit);
 $('stop').addEventListener('click', stop);
