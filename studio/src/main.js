@@ -345,7 +345,12 @@ async function makeOne(preview, ticket) {
   lap('make');
   const current = () => ticket === job;
   if (state.picture) {
-    await showDrawing(await (await api(`/api/result/${state.session}/curve.svg`, { signal })).blob(), current);
+    // The sheet as drawing_image draws it at the size shown: a picture's SVG holds hundreds
+    // of thousands of points, which the browser took seconds to draw (the download is the SVG).
+    const ratio = window.devicePixelRatio || 1, box = $('sheet').getBoundingClientRect();
+    const side = (pixels) => Math.min(4096, Math.max(16, Math.round(pixels * ratio)));
+    const size = `${side(box.width - 32)}x${side(box.height - 44)}`;
+    await showDrawing(await (await api(`/api/result/${state.session}/render.png?size=${size}`, { signal })).blob(), current);
     if (!current()) return;
     lap('draw');
     shown(stats, preview, start, phases);
@@ -398,8 +403,8 @@ function shown(stats, preview, start, phases) {
   showError(null);
 }
 
-// A drawing, its SVG shown as an image of the sheet, unless `current()` says it is no
-// longer wanted once decoded; the one before is let go.
+// A drawing (an SVG, or a picture's PNG) shown as an image of the sheet, unless
+// `current()` says it is no longer wanted once decoded; the one before is let go.
 let drawingUrl = null;
 async function showDrawing(svg, current) {
   const url = URL.createObjectURL(svg);
@@ -409,7 +414,7 @@ async function showDrawing(svg, current) {
     await img.decode();
   } catch {
     URL.revokeObjectURL(url);
-    throw new Error('the browser could not draw the drawing\'s SVG');
+    throw new Error('the browser could not draw the drawing');
   }
   if (!current()) {
     URL.revokeObjectURL(url);
