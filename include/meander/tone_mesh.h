@@ -33,4 +33,9 @@ struct ToneOptions {
 // would number more than `max_cells`. Deterministic; O(pixels + finest cells * levels).
 PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOptions& options, int64_t max_cells = int64_t(1) << 23);
 
+// About how many cells tone_mesh makes of `area` square millimetres of black, the most
+// ink there is: the area over the square of the darkest cells' side (options.spacing
+// times the passes a cell's line makes across it). What a caller bounds memory by.
+double black_tone_cells(double area, const ToneOptions& options);
+
 } // namespace meander

@@ -8,6 +8,7 @@
 #include "meander/remesh.h"
 #include "meander/shapes.h"
 #include "meander/textured_io.h"
+#include "meander/tone_mesh.h"
 
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
@@ -276,15 +277,13 @@ namespace {
 // The elements make_studio_result would hold for these parameters as they are.
 int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   if (params.mode == StudioMode::picture) {
-    // The line's points: at most the room inside the margins in the darkest cells
-    // tone_mesh makes, their sides kPassesPerCell (1.61) spacings, with 5 cycle segments
-    // a cell (a black picture's line has 4.5), of `samples` points each.
+    // The line's points: at most the room inside the margins in black, with 5 cycle
+    // segments a cell (a black picture's line has 4.5), of `samples` points each.
     const ImageJob& job = params.image;
     const Texture& picture = surface.picture;
     double area = std::max(0.0, job.paper.width - 2 * job.paper.margin) * std::max(0.0, job.paper.height - 2 * job.paper.margin);
     if (job.width && picture.width > 0) area = *job.width * (*job.width * picture.height / picture.width);
-    const double cell = 1.61 * job.tone.spacing;
-    return int64_t(std::min(area / (cell * cell), 1e12)) * 5 * job.curve.samples;
+    return int64_t(std::min(black_tone_cells(area, job.tone), 1e12)) * 5 * job.curve.samples;
   }
   const PolygonMesh& mesh = surface.repaired.mesh;
   int64_t faces = mesh.num_faces(), corners = int64_t(mesh.face_vertices.size()), edges = surface.repaired.connectivity.num_edges();

@@ -213,4 +213,9 @@ PolygonMesh tone_mesh(const Texture& picture, const Rect& area, const ToneOption
   return mesh;
 }
 
+double black_tone_cells(double area, const ToneOptions& options) {
+  const double side = kPassesPerCell * options.spacing;
+  return area / (side * side);
+}
+
 } // namespace meander
