@@ -1,6 +1,6 @@
 // The studio page: a three.js view of the surface and the result, the controls for every
-// parameter of `meander curve`, `wire`, `duotone` and `image` (a picture's drawing, shown
-// as its SVG), and the JSON API of docs/studio.md.
+// parameter of `meander curve`, `wire`, `duotone` and `image` (a picture drawn with one
+// line, shown as its sheet), and the JSON API of docs/studio.md.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
@@ -406,8 +406,8 @@ function shown(stats, preview, start, phases) {
 // A drawing (an SVG, or a picture's PNG) shown as an image of the sheet, unless
 // `current()` says it is no longer wanted once decoded; the one before is let go.
 let drawingUrl = null;
-async function showDrawing(svg, current) {
-  const url = URL.createObjectURL(svg);
+async function showDrawing(image, current) {
+  const url = URL.createObjectURL(image);
   const img = new Image();
   img.src = url;
   try {
