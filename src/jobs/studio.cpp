@@ -1,6 +1,7 @@
 #include "meander/studio.h"
 
 #include "io/binary.h"
+#include "io/formats.h"
 #include "meander/default_init.h"
 #include "meander/error.h"
 #include "meander/io.h"
@@ -240,10 +241,7 @@ std::string studio_parameters_json() {
 const std::array<std::string_view, 6> studio_picture_extensions = {".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif"};
 
 bool is_studio_picture(std::string_view filename) {
-  const size_t dot = filename.find_last_of('.');
-  if (dot == std::string_view::npos) return false;
-  std::string extension(filename.substr(dot));
-  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = io::lowercase_extension(std::filesystem::path(filename));
   return std::find(studio_picture_extensions.begin(), studio_picture_extensions.end(), extension) !=
          studio_picture_extensions.end();
 }
