@@ -291,6 +291,25 @@ TEST(Studio, APreviewOverItsBudgetTakesFewerSamplesThenARibbon) {
   EXPECT_EQ(studio_result_size(surface, narrow), studio_result_size(surface, {.mode = StudioMode::constant_wire}) / 2);
 }
 
+// A variable mode's preview whose ribbon is still over the budget has a rung a triangle
+// instead of two: on a 45,000-face sphere (135,000 triangles of the cycle) the ribbon has
+// 540,000 triangles, 270,000 so.
+TEST(Studio, AVariablePreviewOverItsBudgetHasARungATriangle) {
+  StudioSurface surface{.name = "sphere.obj"};
+  surface.repaired = repair(make_shape("sphere", 45000), surface.name);
+  const StudioParams ribbon{.mode = StudioMode::variable_ribbon, .wire = {.levels = 0}};
+  ASSERT_GT(studio_result_size(surface, ribbon), studio_preview_budget);
+  const int64_t two = make_studio_result(surface, ribbon).triangles; // the slab mesh's needles collapsed: fewer than the bound
+  for (const StudioMode mode : {StudioMode::variable_wire, StudioMode::variable_ribbon}) {
+    const StudioResult quick = make_studio_result(surface, {.mode = mode, .preview = true});
+    EXPECT_EQ(quick.params.wire.shape, WireShape::ribbon);
+    EXPECT_EQ(quick.params.wire.rungs, 1);
+    EXPECT_EQ(2 * quick.triangles, two);
+    EXPECT_EQ(2 * studio_result_size(surface, {.mode = mode, .preview = true}), studio_result_size(surface, ribbon));
+    EXPECT_EQ(nlohmann::json::parse(studio_stats_json(quick))["preview_rungs"], 1);
+  }
+}
+
 TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   const StudioSurface surface = demo_surface();
   StudioParams full{.mode = StudioMode::variable_wire, .wire = {.levels = 2}};
@@ -306,6 +325,7 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(studio_result_size(surface, preview), quick.triangles);
   const auto stats = nlohmann::json::parse(studio_stats_json(quick));
   EXPECT_EQ(stats["preview"], true);
+  EXPECT_FALSE(stats.contains("preview_rungs")); // within its budget: two rungs a triangle
   EXPECT_FALSE(stats.contains("watertight"));
   EXPECT_FALSE(stats.contains("self_intersecting"));
   EXPECT_EQ(nlohmann::json::parse(studio_stats_json(level0))["preview"], false);

@@ -70,12 +70,17 @@ TEST_P(WireOnShapes, VariableWireIsOneTorusPerCycle) {
   const PolygonMesh wire = variable_wire(curve.quads, curve.cycle, {.levels = 1}).mesh;
   expect_tori(wire, curve.cycle.num_cycles());
   EXPECT_FALSE(check_printability(wire, {.thickness = false}).self_intersecting);
+  // With a rung a triangle: still a torus per cycle, of half the faces.
+  const PolygonMesh one = variable_wire(curve.quads, curve.cycle, {.levels = 1, .rungs = 1}).mesh;
+  expect_tori(one, curve.cycle.num_cycles());
+  EXPECT_EQ(2 * one.num_faces(), wire.num_faces());
 }
 
 TEST_P(WireOnShapes, RibbonsAreBandsWithTwoBoundaryLoopsPerCycle) {
   const CurveResult curve = curve_of(GetParam().make());
   for (const PolygonMesh& ribbon : {automatic(curve, WireShape::ribbon).mesh,
-                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).mesh}) {
+                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1}).mesh,
+                                    variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .levels = 1, .rungs = 1}).mesh}) {
     const MeshReport r = inspect(ribbon);
     EXPECT_EQ(r.non_manifold_edges, 0);
     EXPECT_EQ(r.non_manifold_vertices, 0);
@@ -359,6 +364,20 @@ TEST(Wire, ZeroSizedTrapezoidIsTheControlPoint) {
     for (size_t j = 0; j < 4; ++j) EXPECT_LT(norm(ribbon.positions[4 * i + j] - control.points[i]), 1e-6) << i;
 }
 
+// One rung a triangle is the middle of its trapezoid: the midpoints of the two rungs'
+// ends, whatever t, joined straight to the next triangle's.
+TEST(Wire, OneRungIsTheTrapezoidsMiddle) {
+  const CurveResult curve = curve_of(torus(200));
+  const PolygonMesh two = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 0.7, .t = 0.5, .levels = 0}).mesh;
+  const PolygonMesh one = variable_wire(curve.quads, curve.cycle, {.shape = WireShape::ribbon, .s = 0.7, .t = 0.9, .levels = 0, .rungs = 1}).mesh;
+  ASSERT_EQ(2 * one.positions.size(), two.positions.size());
+  for (size_t rung = 0; 2 * rung < one.positions.size(); ++rung)
+    for (size_t side = 0; side < 2; ++side) {
+      const Vec3 middle = (two.positions[4 * rung + side] + two.positions[4 * rung + 2 + side]) * 0.5f;
+      EXPECT_LT(norm(one.positions[2 * rung + side] - middle), 1e-5) << rung;
+    }
+}
+
 // With s = t = 1 each trapezoid is its whole triangle: the ribbon's control mesh covers
 // the surface, its area equal to the triangulated quad mesh's.
 TEST(Wire, FullSizedTrapezoidsCoverTheSurface) {
@@ -409,6 +428,7 @@ TEST(Wire, BadParametersAreRefused) {
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.t = -0.1}), UsageError);
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.thickness = -1}), UsageError);
   EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.levels = -1}), UsageError);
+  for (const int rungs : {0, 3}) EXPECT_THROW(variable_wire(curve.quads, curve.cycle, {.rungs = rungs}), UsageError);
 }
 
 // The sizes known before the wire is made are the sizes made, in triangles after fanning.
@@ -421,10 +441,11 @@ TEST(Wire, TrianglesAreKnownBeforehand) {
       const ConstantWireOptions options{.shape = shape, .radius = 0.01, .sides = 5, .curve = {.samples = samples}};
       EXPECT_EQ(constant_wire_triangles(cycle, options), triangles(constant_wire(curve.quads, curve.cycle, options).mesh));
     }
-    for (const int levels : {0, 1}) {
-      const VariableWireOptions options{.shape = shape, .levels = levels};
-      EXPECT_EQ(variable_wire_triangles(cycle, options), triangles(variable_wire(curve.quads, curve.cycle, options).mesh));
-    }
+    for (const int levels : {0, 1})
+      for (const int rungs : {1, 2}) {
+        const VariableWireOptions options{.shape = shape, .levels = levels, .rungs = rungs};
+        EXPECT_EQ(variable_wire_triangles(cycle, options), triangles(variable_wire(curve.quads, curve.cycle, options).mesh));
+      }
   }
 }
 

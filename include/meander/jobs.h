@@ -40,8 +40,9 @@ struct WireJob {
   // cap_angle flipped, needles collapsed) unless keep_faces.
   double cap_angle = 120;
   bool keep_faces = false;
-  // Variable: VariableWireOptions::clear.
+  // Variable: VariableWireOptions::clear and rungs.
   bool clear = true;
+  int rungs = 2;
   // The printability report: none (a preview), or with the thickness of a wire measured
   // (a ribbon has none) when measure_thickness, and judged against min_thickness.
   bool report = true;

@@ -56,7 +56,8 @@ struct StudioParams {
   // The quick version the page shows first after each change (and alone while a slider
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
   // larger than studio_preview_budget, studio_result_size), a wire still over it drawn as
-  // its ribbon, levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
+  // its ribbon, a variable ribbon still over it with one rung a triangle
+  // (VariableWireOptions::rungs), levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
   // `radius auto` unchecked (see make_studio_result), a variable wire's self-intersections
   // not cleared (WireJob::clear), and no printability report. The full result follows it.
   // A picture's preview is its line with at most 2 curve samples per segment.

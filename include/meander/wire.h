@@ -101,6 +101,11 @@ struct VariableWireOptions {
   // Search the result for self-intersections and clear them (variable_wire); false: the
   // local estimates alone, for a quick look (the studio's preview), which may cross itself.
   bool clear = true;
+  // Rungs per triangle of the cycle: 2, the trapezoid's two ends, joined to the next
+  // triangle's by a connector; or 1, its middle (where t = 0 puts both ends), joined
+  // straight to the next triangle's: half the faces, t not used, for a quick look at
+  // many triangles (the studio's preview).
+  int rungs = 2;
 };
 
 struct VariableWire {

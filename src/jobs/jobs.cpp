@@ -17,7 +17,8 @@ ConstantWireOptions constant_options(const WireJob& job) {
 }
 
 VariableWireOptions variable_options(const WireJob& job) {
-  return {.shape = job.shape, .s = job.s, .t = job.t, .thickness = job.thickness, .levels = job.levels, .clear = job.clear};
+  return {.shape = job.shape, .s = job.s, .t = job.t, .thickness = job.thickness, .levels = job.levels, .clear = job.clear,
+          .rungs = job.rungs};
 }
 
 } // namespace

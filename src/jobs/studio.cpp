@@ -352,6 +352,9 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   // A wire of 8 sides, or of slabs, has 4 to 8 times the triangles of its ribbon.
   if ((mode == StudioMode::constant_wire || mode == StudioMode::variable_wire) && result_size(surface, params) > studio_preview_budget)
     params.wire.shape = WireShape::ribbon;
+  // A variable ribbon still over it has a rung a triangle, not two: half the triangles,
+  // and on so many of them each is a few pixels, where the connectors do not show.
+  if (params.wire.method == WireMethod::variable && result_size(surface, params) > studio_preview_budget) params.wire.rungs = 1;
   return params;
 }
 
@@ -507,6 +510,7 @@ std::string studio_stats_json(const StudioResult& result) {
     if (result.params.wire.shape == WireShape::ribbon &&
         (result.params.mode == StudioMode::constant_wire || result.params.mode == StudioMode::variable_wire))
       stats["preview_as_ribbon"] = true;
+    if (result.params.wire.rungs == 1) stats["preview_rungs"] = 1;
     stats["stars"] = result.curve.stars;
     stats["cap_flips"] = result.curve.cap_flips;
     stats["cap_cuts"] = result.curve.cap_cuts;

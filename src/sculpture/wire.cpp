@@ -503,8 +503,9 @@ int64_t constant_wire_triangles(int64_t cycle_triangles, const ConstantWireOptio
 }
 
 int64_t variable_wire_triangles(int64_t cycle_triangles, const VariableWireOptions& options) {
-  // Per triangle of the cycle 8 control quads (wire) or 2 (ribbon), 4 each per level.
-  const double triangles = double(cycle_triangles) * (options.shape == WireShape::wire ? 16 : 4) * std::pow(4.0, options.levels);
+  // Per rung 4 control quads (wire) or 1 (ribbon), 4 each per level.
+  const double triangles =
+      double(cycle_triangles) * options.rungs * (options.shape == WireShape::wire ? 8 : 2) * std::pow(4.0, options.levels);
   return triangles < 0x1p62 ? int64_t(triangles) : int64_t(1) << 62;
 }
 
@@ -608,15 +609,18 @@ void check_variable_options(const TriangleCycle& cycle, const VariableWireOption
   if (!(options.thickness >= 0) || !std::isfinite(options.thickness))
     throw ParameterError("thickness", " must be 0 (automatic) or a positive number (got " + std::to_string(options.thickness) + ")");
   if (options.levels < 0) throw ParameterError("levels", " must be >= 0 (got " + std::to_string(options.levels) + ")");
+  if (options.rungs != 1 && options.rungs != 2) throw ParameterError("rungs", " must be 1 or 2 (got " + std::to_string(options.rungs) + ")");
   require_indexable(variable_wire_triangles(cycle.num_triangles(), options),
                     "the variable " + std::string(options.shape == WireShape::wire ? "wire" : "ribbon") + " at " +
                         std::to_string(options.levels) + " levels");
 }
 
-// The rungs of the strip, two per triangle of the cycle (where the curve enters its
-// trapezoid and where it leaves), each with the normal its slab stands on.
+// The rungs of the strip, `per` triangle of the cycle (VariableWireOptions::rungs: where
+// the curve enters its trapezoid and where it leaves, or its middle), each with the
+// normal its slab stands on. Triangle i's rungs are per * i onwards.
 struct Rungs {
   std::vector<Vec3> left, right, up;
+  int per = 2;
   size_t size() const { return left.size(); }
 };
 
@@ -624,10 +628,12 @@ struct Rungs {
 // formula with p00 = p01 = apex, p10 = n, p11 = p keeps the triangle's rotation order;
 // corner v_mn is p_(1-m)(1-n) when s = t = 1.
 Rungs trapezoid_rungs(const QuadMesh& quads, const TriangleCycle& cycle, const Ladder& ladder, const VariableWireOptions& options) {
-  const size_t triangles = cycle.order.size();
-  Rungs rungs{std::vector<Vec3>(2 * triangles), std::vector<Vec3>(2 * triangles), std::vector<Vec3>(2 * triangles)};
+  const int per = options.rungs;
+  const size_t size = size_t(per) * cycle.order.size();
+  Rungs rungs{std::vector<Vec3>(size), std::vector<Vec3>(size), std::vector<Vec3>(size), per};
+  const double t = per == 1 ? 0 : options.t; // one rung: the middle, where both ends meet at t = 0
   const float w0s = float((1 - options.s) / 2), w1s = float((1 + options.s) / 2);
-  const float w0t = float((1 - options.t) / 2), w1t = float((1 + options.t) / 2);
+  const float w0t = float((1 - t) / 2), w1t = float((1 + t) / 2);
   // Corners on the p side, then the n side, each as (apex rail, other rail).
   auto trapezoid = [&](Vec3 p, Vec3 a, Vec3 q) {
     return std::array<std::pair<Vec3, Vec3>, 2>{{{a * w1s + (q * w0t + p * w1t) * w0s, a * w0s + (q * w0t + p * w1t) * w1s},
@@ -647,8 +653,8 @@ Rungs trapezoid_rungs(const QuadMesh& quads, const TriangleCycle& cycle, const L
       const Vec3 normal = ladder.coherent[size_t(c)] ? within_cone(control_normal(quads, cycle, ladder, c, i), ladder.up[i], max_slab_tilt)
                                                      : ladder.up[i];
       const bool entry_p = ladder.entry_is_p[i], apex_right = ladder.apex_right[i];
-      for (size_t r = 0; r < 2; ++r) {
-        const size_t side = r == 0 ? !entry_p : entry_p, rung = 2 * i + r;
+      for (size_t r = 0; r < size_t(per); ++r) {
+        const size_t side = r == 0 ? !entry_p : entry_p, rung = size_t(per) * i + r;
         const auto [apex_corner, other_corner] = corners[side];
         rungs.left[rung] = apex_right ? other_corner : apex_corner;
         rungs.right[rung] = apex_right ? apex_corner : other_corner;
@@ -676,16 +682,17 @@ std::vector<float> thickness_limits(const QuadMesh& quads, const TriangleCycle& 
   const std::vector<Vec3>& left = rungs.left;
   const std::vector<Vec3>& right = rungs.right;
   const std::vector<Vec3>& up = rungs.up;
+  const size_t per = size_t(rungs.per);
   std::vector<float> thickness_limit(rungs.size());
-  for (size_t i = 0; i < thickness_limit.size() / 2; ++i) {
+  for (size_t i = 0; i < thickness_limit.size() / per; ++i) {
     const auto [pi, ai, ni] = cycle_triangle(quads, cycle.order[i]);
     const Vec3 p = quads.positions[size_t(pi)], a = quads.positions[size_t(ai)], q = quads.positions[size_t(ni)];
     const double longest = std::max({norm(a - p), norm(q - a), norm(p - q)});
-    thickness_limit[2 * i] = thickness_limit[2 * i + 1] = float(longest > 0 ? 0.5 * norm(cross(a - p, q - p)) / longest : 0.0);
+    std::fill_n(thickness_limit.begin() + int64_t(per * i), per, float(longest > 0 ? 0.5 * norm(cross(a - p, q - p)) / longest : 0.0));
   }
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
-    const size_t first = 2 * size_t(cycle.cycle_start[size_t(c)]), count = 2 * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
-    for (size_t k = 1; k < count; k += 2) {
+    const size_t first = per * size_t(cycle.cycle_start[size_t(c)]), count = per * size_t(cycle.cycle_start[size_t(c) + 1]) - first;
+    for (size_t k = per - 1; k < count; k += per) { // each connector: a triangle's last rung to the next one's first
       const size_t a = first + k, b = first + (k + 1) % count;
       const bool swap = (k + 1) % count == 0 && ladder.mobius[size_t(c)]; // left meets right
       const double angle = std::acos(std::clamp(double(dot(up[a], up[b])) * (swap ? -1 : 1), -1.0, 1.0));
@@ -702,7 +709,7 @@ std::vector<float> thickness_limits(const QuadMesh& quads, const TriangleCycle& 
   midline.points.resize(left.size());
   for (size_t r = 0; r < left.size(); ++r) midline.points[r] = (left[r] + right[r]) * 0.5f;
   midline.start.resize(cycle.cycle_start.size());
-  for (size_t c = 0; c < cycle.cycle_start.size(); ++c) midline.start[c] = 2 * cycle.cycle_start[c];
+  for (size_t c = 0; c < cycle.cycle_start.size(); ++c) midline.start[c] = rungs.per * cycle.cycle_start[c];
   const Clearance apart = tube_clearance(midline, 1, 1.0, false);
   for (size_t r = 0; r < left.size(); ++r) thickness_limit[r] = std::min(thickness_limit[r], float(0.7 * apart.local[r]));
   return thickness_limit;
@@ -754,7 +761,8 @@ PolygonMesh control_mesh(const Sections& sections, const TriangleCycle& cycle, c
   control.positions = sections.positions();
   const int32_t width = sections.width();
   for (int32_t c = 0; c < cycle.num_cycles(); ++c) {
-    const int32_t first = 2 * cycle.cycle_start[size_t(c)], rungs = 2 * cycle.cycle_start[size_t(c) + 1] - first;
+    const int32_t per = sections.rungs.per;
+    const int32_t first = per * cycle.cycle_start[size_t(c)], rungs = per * cycle.cycle_start[size_t(c) + 1] - first;
     // Where a Moebius cycle closes, left meets right: a ribbon's rung is reversed, a
     // slab turned by half a turn (both directions swap).
     connect_rings(control, first * width, rungs, width, !sections.ribbon, ladder.mobius[size_t(c)] ? width / 2 : 0);
@@ -792,10 +800,11 @@ bool clear_crossings(PolygonMesh& wire, PolygonMesh& control, Sections& sections
   std::vector<float>& narrowed = sections.narrowed;
   std::optional<CatmullClark> topology;
   const int64_t faces_per_rung = int64_t(ribbon ? 1 : sections.width()) * 2 << (2 * smoothing.levels);
+  const int64_t per = sections.rungs.per;
   auto step = [&](size_t rung, int delta) {
-    const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(rung / 2)) -
+    const auto c = size_t(std::upper_bound(cycle.cycle_start.begin(), cycle.cycle_start.end(), int32_t(int64_t(rung) / per)) -
                           cycle.cycle_start.begin() - 1);
-    const int64_t first = 2 * int64_t(cycle.cycle_start[c]), rungs = 2 * int64_t(cycle.cycle_start[c + 1]) - first;
+    const int64_t first = per * int64_t(cycle.cycle_start[c]), rungs = per * int64_t(cycle.cycle_start[c + 1]) - first;
     return size_t(first + ((int64_t(rung) - first + delta) % rungs + rungs) % rungs);
   };
   std::vector<uint8_t> changed; // per face of the wire: empty = search it all

@@ -635,8 +635,10 @@ function showStats(stats) {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
   } else if (stats.mode !== 'curve' && stats.mode !== 'picture') {
     rows.push(['faces', stats.faces.toLocaleString()]);
-    // Over the preview's budget a wire is previewed as its ribbon, a few times lighter.
-    if (stats.preview_as_ribbon) rows.push(['drawn as', 'its ribbon, until the full wire comes']);
+    // Over the preview's budget a wire is previewed as its ribbon, a few times lighter, and
+    // a variable one with a quad a triangle of the cycle instead of two.
+    const lighter = [stats.preview_as_ribbon && 'its ribbon', stats.preview_rungs === 1 && 'a quad a triangle'].filter(Boolean);
+    if (lighter.length) rows.push(['drawn as', `${lighter.join(', with ')}, until the full ${stats.mode.endsWith('wire') ? 'wire' : 'ribbon'} comes`]);
     if (!stats.preview) rows.push(['watertight', yesNo(stats.watertight)], ['self-intersection', yesNo(stats.self_intersecting)]);
     // As `meander wire` notes: where the surface itself crosses itself, no settings clear the wire.
     if (stats.surface_crossings > 0) {
