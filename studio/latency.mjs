@@ -1,6 +1,7 @@
 // Measures the studio's live update end to end in the browser (docs/benchmarks.md):
-//   node latency.mjs MEANDER_BINARY MESH_FILE [--previews] [MODE:LEVELS ...]
-// For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times for a full
+//   node latency.mjs MEANDER_BINARY MESH_FILE [--previews] [--spacing SLIDER] [MODE:LEVELS ...]
+// With --spacing, the spacing is on at that position of its slider (0 to 100: 1/300 to 1/10
+// of the diagonal) first. For each mode (default: all, levels 0 and 1 for the variable ones), changes the seed three times for a full
 // result (not with --previews) and three times for a preview (what the page asks while a
 // slider moves) and prints the median of the page's own figure: from the request leaving
 // to the new geometry in the scene (make + view.bin + decoding + the first frame drawn),
@@ -11,9 +12,11 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [binary, meshFile, ...rest] = process.argv.slice(2);
-const previewsOnly = rest[0] === '--previews';
-const chosen = previewsOnly ? rest.slice(1) : rest;
+const [binary, meshFile, ...args] = process.argv.slice(2);
+const previewsOnly = args.includes('--previews');
+const spacingAt = args.indexOf('--spacing');
+const spacing = spacingAt >= 0 ? args[spacingAt + 1] : null;
+const chosen = args.filter((a, i) => a !== '--previews' && i !== spacingAt && i !== spacingAt + 1);
 const modes = chosen.length ? chosen.map((m) => m.split(':')).map(([mode, levels]) => [mode, Number(levels ?? 1)])
   : [['curve', 1], ['constant-ribbon', 1], ['constant-wire', 1], ['variable-ribbon', 0], ['variable-wire', 0],
     ['variable-ribbon', 1], ['variable-wire', 1], ['duotone', 0]];
@@ -33,6 +36,13 @@ try {
   await page.setInputFiles('#file', { name: path.basename(meshFile), mimeType: 'application/octet-stream', buffer: readFileSync(meshFile) });
   await idle(0);
   const set = (id, value) => page.evaluate(([i, v]) => { const e = document.getElementById(i); e.value = v; e.dispatchEvent(new Event('input', { bubbles: true })); }, [id, value]);
+  if (spacing !== null) {
+    const revision = await page.evaluate(() => window.studio.state.revision);
+    await page.evaluate(() => { const e = document.getElementById('spacing-on'); e.checked = true; e.dispatchEvent(new Event('input', { bubbles: true })); });
+    await set('spacing', spacing);
+    await idle(revision);
+    console.log(`spacing ${await page.evaluate(() => document.getElementById('spacing-value').textContent)}`);
+  }
   for (const [mode, levels] of modes) {
     await set(mode === 'duotone' ? 'subdivide' : 'levels', String(levels));
     let revision = await page.evaluate(() => window.studio.state.revision);

@@ -320,6 +320,14 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(quick.params.wire.levels, 0);
   EXPECT_EQ(quick.params.wire.curve.curve.samples, 2);
   EXPECT_EQ(quick.params.wire.curve.relax, 2); // of a spacing's 20 rounds of relaxation
+  // None where the remeshed surface has more than 10,000 faces.
+  for (const double spacing : {0.5, 0.03}) {
+    StudioParams curve{.mode = StudioMode::curve, .preview = true};
+    curve.wire.curve.spacing = spacing;
+    const int64_t faces = remeshed_faces(surface.repaired.mesh, std::nullopt, spacing, Quadrangulation::dual_simplest);
+    ASSERT_EQ(faces > 10'000, spacing == 0.03) << faces;
+    EXPECT_EQ(make_studio_result(surface, curve).params.wire.curve.relax, faces > 10'000 ? 0 : 2);
+  }
   const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 0}});
   EXPECT_EQ(quick.triangles, level0.triangles);
   EXPECT_EQ(studio_result_size(surface, preview), quick.triangles);
@@ -392,6 +400,43 @@ TEST(Studio, AWiresSliderKeepsTheCurveOfTheResultBefore) {
   full.wire.report = false;
   for (const StudioParams& other : {reseeded, spaced, wire, full})
     EXPECT_EQ(make_studio_result(surface, other, &before).curve.curves.points, make_studio_result(surface, other).curve.curves.points);
+}
+
+// A result of a spacing keeps the even surface of the result before when it was made for
+// the same spacing, model size and quad (a seed, a mode, a preview's release), and makes
+// what a fresh result would; another spacing remeshes. The result before is given a
+// moved even surface, so that the test sees which one was taken.
+TEST(Studio, ASpacingsEvenSurfaceIsKeptWhileOtherSlidersMove) {
+  const StudioSurface surface = demo_surface();
+  StudioParams curve{.mode = StudioMode::curve, .preview = true};
+  curve.wire.curve.spacing = 0.5;
+  const StudioResult first = make_studio_result(surface, curve);
+  ASSERT_TRUE(first.even);
+  EXPECT_EQ(first.even->options, even_surface_options(curve.wire.curve));
+  StudioResult before = first;
+  EvenSurface moved = make_even_surface(surface.repaired.mesh, first.even->options);
+  for (Vec3& p : moved.even.positions) p = p + Vec3{1, 0, 0};
+  before.even = std::make_shared<const EvenSurface>(std::move(moved));
+  StudioParams reseeded = curve, wire = curve, full = curve, duotone{.mode = StudioMode::duotone, .preview = true};
+  reseeded.wire.curve.cycle.seed = 9;
+  wire.mode = StudioMode::variable_ribbon;
+  full.preview = false;
+  duotone.duotone.spacing = 0.5;
+  duotone.duotone.duotone.quadrangulation = Quadrangulation::dual_simplest; // the curve's: the same even surface
+  for (const StudioParams& same : {reseeded, wire, full, duotone}) {
+    const StudioResult kept = make_studio_result(surface, same, &before);
+    EXPECT_EQ(kept.even, before.even) << int(same.mode);
+    // The curve was made on it (the moved surface's quads), else the same as a fresh one.
+    const StudioResult fresh = make_studio_result(surface, same);
+    EXPECT_NE(kept.curve.quads.positions, fresh.curve.quads.positions);
+    EXPECT_EQ(make_studio_result(surface, same, &first).curve.curves.points, fresh.curve.curves.points);
+  }
+  StudioParams other = curve;
+  other.wire.curve.spacing = 0.4;
+  const StudioResult remeshed = make_studio_result(surface, other, &before);
+  EXPECT_NE(remeshed.even, before.even);
+  EXPECT_EQ(remeshed.even->options.spacing, 0.4);
+  EXPECT_FALSE(make_studio_result(surface, {.mode = StudioMode::curve}, &first).even); // no spacing, no even surface
 }
 
 TEST(Studio, UploadsOverTheFaceLimitAreRefused) {

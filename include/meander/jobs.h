@@ -97,6 +97,13 @@ struct DuotoneJob {
 Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job,
                      Progress* progress = nullptr);
 
+// Those of a duotone job with DuotoneJob::spacing set (pipeline.h).
+EvenSurfaceOptions even_surface_options(const DuotoneJob& job);
+
+// The same on an even surface made for this job (throws UsageError unless
+// even.options == even_surface_options(job)), without the remesh's time.
+Duotone make_duotone(const EvenSurface& even, const DuotoneJob& job, Progress* progress = nullptr);
+
 // The duotone make_duotone(mesh, connectivity, job) made, painted with
 // job.tiles and subdivided job.subdivide levels. `atlas`, if not empty, is
 // duotone_atlas(job.tiles) already made. Throws ParameterError for values out of range,

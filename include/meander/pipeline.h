@@ -3,6 +3,7 @@
 // smooth curves out, with the time each stage took.
 #pragma once
 
+#include "meander/closest_points.h"
 #include "meander/collapse_needles.h"
 #include "meander/curve.h"
 #include "meander/flip_caps.h"
@@ -98,6 +99,32 @@ int64_t remeshed_faces(const PolygonMesh& mesh, std::optional<double> model_size
 PolygonMesh remesh_to_spacing(const PolygonMesh& mesh, double spacing, Quadrangulation quadrangulation,
                               int64_t max_faces = 0, const ClosestPoints* input = nullptr);
 
+// What an even surface is made for: the input scaled to model_size (if set) and
+// remeshed as remesh_to_spacing does with the other three.
+struct EvenSurfaceOptions {
+  std::optional<double> model_size;
+  double spacing = 0;
+  Quadrangulation quadrangulation = Quadrangulation::dual_simplest;
+  int64_t max_faces = 0;
+  friend bool operator==(const EvenSurfaceOptions&, const EvenSurfaceOptions&) = default;
+};
+
+// Those of a job with CurveJob::spacing set.
+EvenSurfaceOptions even_surface_options(const CurveJob& job);
+
+// The surface a curve of a spacing is made on: what make_curve makes first, for a caller
+// that makes several curves, wires or duotones of one spacing (the studio, whose other
+// sliders leave it as it is).
+struct EvenSurface {
+  EvenSurfaceOptions options;
+  PolygonMesh input; // scaled to options.model_size
+  ClosestPoints on_input;
+  PolygonMesh even; // remesh_to_spacing(input, ...)
+};
+
+// Throws what scaled_to_size and remesh_to_spacing throw.
+EvenSurface make_even_surface(PolygonMesh mesh, const EvenSurfaceOptions& options);
+
 // Runs the remeshing (with CurveJob::spacing), connectivity, quadrangulation, the cycle,
 // control points and smoothing on a mesh that repair() accepted. Takes the mesh by value so its memory is released as soon as
 // the quad mesh exists. Appends to `times` if given, and tells `progress` (which may
@@ -108,6 +135,12 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times 
 // The same with the mesh's connectivity already known (RepairResult::connectivity); an
 // empty or mismatched one is rebuilt.
 CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times = nullptr,
+                       Progress* progress = nullptr);
+
+// The same on an even surface made for this job (throws UsageError unless
+// even.options == even_surface_options(job)): the same result as make_curve on the
+// input, without the remesh's time.
+CurveResult make_curve(const EvenSurface& even, const CurveJob& job, StageTimes* times = nullptr,
                        Progress* progress = nullptr);
 
 } // namespace meander

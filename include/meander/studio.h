@@ -57,9 +57,10 @@ struct StudioParams {
   // is dragged): at most 2 curve samples per segment (1 where 2 would make the result
   // larger than studio_preview_budget, studio_result_size), a wire still over it drawn as
   // its ribbon, a variable ribbon still over it with one rung a triangle
-  // (VariableWireOptions::rungs), levels and subdivide 0, at most 2 rounds of relaxation with a spacing,
-  // `radius auto` unchecked (see make_studio_result), a variable wire's self-intersections
-  // not cleared (WireJob::clear), and no printability report. The full result follows it.
+  // (VariableWireOptions::rungs), levels and subdivide 0, at most 2 rounds of relaxation
+  // with a spacing (none where the remeshed surface has more than 10,000 faces), `radius
+  // auto` unchecked (see make_studio_result), a variable wire's self-intersections not
+  // cleared (WireJob::clear), and no printability report. The full result follows it.
   // A picture's preview is its line with at most 2 curve samples per segment.
   bool preview = false;
 };
@@ -135,6 +136,9 @@ struct StudioResult {
   int64_t triangles = 0; // of the cycle (curve mode) or the mesh, after fanning
   LinePicture picture;   // picture mode's line and drawing (curve.curves is its line too)
   double seconds = 0;    // making it, report included
+  // With a spacing: the even surface it was made on, which the next result of the same
+  // spacing takes instead of remeshing again (shared, never changed).
+  std::shared_ptr<const EvenSurface> even;
 };
 
 // How many elements make_studio_result(surface, params) would hold at its largest: curve
@@ -150,7 +154,8 @@ int64_t studio_result_size(const StudioSurface& surface, const StudioParams& par
 // make_line_picture). Throws what those throw, TopologyError messages naming the
 // surface, UsageError for picture mode on a surface or another mode on a picture.
 // `previous`, the session's last result if any, lends its duotone atlas when the tile
-// options are the same (the atlas depends on them alone), and to a constant preview with
+// options are the same (the atlas depends on them alone), its even surface when the
+// spacing, model size and quadrangulation are the same, and to a constant preview with
 // `radius auto` the radius it found, when it is a full result on the same curve.
 // `progress`, if given, shows the stage under way and may cancel the work (Cancelled).
 StudioResult make_studio_result(const StudioSurface& surface, const StudioParams& params,

@@ -108,21 +108,25 @@ std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob
   return notes;
 }
 
+EvenSurfaceOptions even_surface_options(const DuotoneJob& job) {
+  return {.model_size = job.model_size, .spacing = job.spacing.value(), .quadrangulation = job.duotone.quadrangulation, .max_faces = job.max_faces};
+}
+
 Duotone make_duotone(const PolygonMesh& mesh, const Connectivity& connectivity, const DuotoneJob& job, Progress* progress) {
-  if (job.model_size) {
-    DuotoneJob sized = job;
-    sized.model_size.reset();
-    return make_duotone(scaled_to_size(mesh, *job.model_size), connectivity, sized, progress);
+  if (job.spacing) {
+    if (progress) progress->begin("remesh");
+    return make_duotone(make_even_surface(mesh, even_surface_options(job)), job, progress);
   }
-  Stages stages(nullptr, progress);
-  if (!job.spacing) {
-    stages.begin("duotone");
-    return make_duotone(mesh, connectivity, job.duotone);
-  }
-  stages.begin("remesh");
-  const PolygonMesh even = remesh_to_spacing(mesh, *job.spacing, job.duotone.quadrangulation, job.max_faces);
-  stages.begin("duotone");
-  return make_duotone(even, build_connectivity(even), job.duotone);
+  if (progress) progress->begin("duotone");
+  return job.model_size ? make_duotone(scaled_to_size(mesh, *job.model_size), connectivity, job.duotone)
+                        : make_duotone(mesh, connectivity, job.duotone);
+}
+
+Duotone make_duotone(const EvenSurface& even, const DuotoneJob& job, Progress* progress) {
+  if (!job.spacing || !(even.options == even_surface_options(job)))
+    throw UsageError("make_duotone: the even surface was made for another spacing, model size, quadrangulation or face limit");
+  if (progress) progress->begin("duotone");
+  return make_duotone(even.even, build_connectivity(even.even), job.duotone);
 }
 
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times,

@@ -55,21 +55,24 @@ CurveResult make_curve(PolygonMesh mesh, const CurveJob& job, StageTimes* times,
   return make_curve(std::move(mesh), Connectivity(), job, times, progress);
 }
 
-CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times,
-                       Progress* progress) {
-  Stages stages(times, progress);
+EvenSurfaceOptions even_surface_options(const CurveJob& job) {
+  return {.model_size = job.model_size, .spacing = job.spacing.value(), .quadrangulation = job.quadrangulation, .max_faces = job.max_faces};
+}
+
+EvenSurface make_even_surface(PolygonMesh mesh, const EvenSurfaceOptions& options) {
+  if (options.model_size) mesh = scaled_to_size(std::move(mesh), *options.model_size);
+  ClosestPoints on_input(mesh);
+  PolygonMesh even = remesh_to_spacing(mesh, options.spacing, options.quadrangulation, options.max_faces, &on_input);
+  return {options, std::move(mesh), std::move(on_input), std::move(even)};
+}
+
+namespace {
+
+// make_curve's stages after the remesh, on `mesh`: the input's own, or with `even` its
+// remeshed surface, the curve then moved onto even->input.
+CurveResult curve_on(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, const EvenSurface* even, Stages& stages,
+                     Progress* progress) {
   CurveResult result;
-  if (job.model_size) mesh = scaled_to_size(std::move(mesh), *job.model_size);
-  // The input surface, onto which the curve made on its remeshed version is moved.
-  PolygonMesh surface;
-  std::optional<ClosestPoints> on_surface;
-  if (job.spacing) {
-    stages.begin("remesh");
-    surface = std::move(mesh);
-    on_surface.emplace(surface);
-    mesh = remesh_to_spacing(surface, *job.spacing, job.quadrangulation, job.max_faces, &*on_surface);
-    connectivity = Connectivity();
-  }
   if (job.slab_mesh) {
     stages.begin("slab mesh");
     if (job.slab_mesh->star_sides > 0) {
@@ -112,7 +115,7 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   }
   stages.begin("cycle");
   // A remeshed curve is moved onto the input surface before it is written, so it is sampled whole.
-  const bool sample = job.sample || job.spacing;
+  const bool sample = job.sample || even;
   std::optional<CycleCurveWriter> writer;
   if (!sample && !job.output.empty()) writer.emplace(result.quads, job.curve, job.output);
   result.cycle = hamiltonian_cycle(result.quads, job.cycle, writer ? writer->observer() : nullptr);
@@ -123,18 +126,17 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
   if (sample) {
     stages.begin("smooth");
     result.curves = cycle_curves(result.quads, result.cycle, job.curve);
-    if (job.spacing) {
+    if (even) {
       stages.begin(job.relax > 0 ? "relax" : "project");
       if (job.relax > 0) {
         RelaxedCurves relaxed =
-            relax_curves(result.curves, surface, *on_surface, {.spacing = *job.spacing, .iterations = job.relax}, progress);
+            relax_curves(result.curves, even->input, even->on_input, {.spacing = *job.spacing, .iterations = job.relax}, progress);
         result.curves = std::move(relaxed.curves);
         result.normals = std::move(relaxed.normals);
       } else {
         result.normals.resize(result.curves.points.size());
-        on_surface->project(result.curves.points, result.normals);
+        even->on_input.project(result.curves.points, result.normals);
       }
-      result.surface = std::move(surface);
     }
     if (!job.output.empty()) {
       stages.begin("write curve");
@@ -143,6 +145,31 @@ CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJ
     }
   }
   stages.end();
+  return result;
+}
+
+} // namespace
+
+CurveResult make_curve(PolygonMesh mesh, Connectivity connectivity, const CurveJob& job, StageTimes* times,
+                       Progress* progress) {
+  Stages stages(times, progress);
+  if (!job.spacing) {
+    if (job.model_size) mesh = scaled_to_size(std::move(mesh), *job.model_size);
+    return curve_on(std::move(mesh), std::move(connectivity), job, nullptr, stages, progress);
+  }
+  stages.begin("remesh");
+  EvenSurface even = make_even_surface(std::move(mesh), even_surface_options(job));
+  CurveResult result = curve_on(std::move(even.even), Connectivity(), job, &even, stages, progress);
+  result.surface = std::move(even.input);
+  return result;
+}
+
+CurveResult make_curve(const EvenSurface& even, const CurveJob& job, StageTimes* times, Progress* progress) {
+  if (!job.spacing || !(even.options == even_surface_options(job)))
+    throw UsageError("make_curve: the even surface was made for another spacing, model size, quadrangulation or face limit");
+  Stages stages(times, progress);
+  CurveResult result = curve_on(even.even, Connectivity(), job, &even, stages, progress);
+  result.surface = even.input;
   return result;
 }
 
