@@ -185,6 +185,19 @@ if command -v node > /dev/null && [ -x "${CHROMIUM:-/usr/bin/chromium}" ]; then
     large=$(ms "$name" "$levels" 200k)
     echo "| $name, levels $levels | $small ms | $(verdict "$small" 300) | $large ms | $(verdict "$large" 1000) |"
   done
+  # With a spacing, counted on the remeshed faces: the bunny at the slider's finest
+  # (1/300 of its diagonal, about 30k faces), the even surface kept as the seed changes.
+  node studio/latency.mjs "$meander" "$shared/bunny_closed.off" --previews --spacing 0 "${modes[@]}" > "$scratch/latency_spacing.txt"
+  echo
+  echo "| preview of, bunny_closed.off with \`--spacing 0\` (<= 300 ms) | figure | met |"
+  echo "|---|---:|---|"
+  for mode in "${modes[@]}"; do
+    name=${mode%%:*}
+    levels=${mode#*:}
+    [ "$levels" = "$mode" ] && levels=1
+    spaced=$(ms "$name" "$levels" spacing)
+    echo "| $name, levels $levels | $spaced ms | $(verdict "$spaced" 300) |"
+  done
 else
   echo "node or Chromium not installed: not measured (make test installs both)"
 fi
