@@ -64,8 +64,9 @@ TEST(Progress, ACancelledJobThrowsAtItsFirstCheck) {
   EXPECT_THROW(make_duotone(mesh, build_connectivity(mesh), DuotoneJob{}, &cancelled), Cancelled);
 }
 
-// Inside the long loops: relaxation checks every round, the report's self-intersection
-// search every block of triangles.
+// Inside the long loops: relaxation checks every round, the self-intersection search
+// (the report's, the variable wire's) every block of triangles, the variable wire's
+// clearing every round.
 TEST(Progress, TheLongLoopsSeeACancel) {
   const PolygonMesh mesh = make_shape("torus", 600);
   const CurveResult curve = make_curve(mesh, {});
@@ -85,6 +86,14 @@ TEST(Progress, TheLongLoopsSeeACancel) {
   Progress stopped;
   stopped.cancel();
   EXPECT_THROW(check_printability(thick.mesh, {.thickness = false}, &stopped), Cancelled);
+  EXPECT_THROW(self_intersecting_faces(thick.mesh, {}, &stopped), Cancelled);
+
+  // A variable ribbon's clearing rounds and their search, which take seconds on a large mesh.
+  const VariableWireOptions ribbon{.shape = WireShape::ribbon, .levels = 1};
+  Progress clearing;
+  EXPECT_NO_THROW(variable_wire(curve.quads, curve.cycle, ribbon, &clearing));
+  clearing.cancel();
+  EXPECT_THROW(variable_wire(curve.quads, curve.cycle, ribbon, &clearing), Cancelled);
 }
 
 } // namespace

@@ -131,8 +131,10 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
 // Every face that meets another where the mesh does not join them (the
 // self-intersections check_printability looks for; zero-area triangles left out),
 // sorted. With `among` (a flag per face), only the pairs with at least one flagged face
-// are tested: after a local change, what may have changed. O(n log n).
-std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among = {});
+// are tested: after a local change, what may have changed. O(n log n). `progress`, if
+// given, may cancel the search of the whole mesh block by block (Cancelled).
+std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among = {},
+                                             Progress* progress = nullptr);
 
 // The report as a JSON object (2-space indented, keys in a fixed order; infinite or
 // unchecked figures are null): triangles, watertight, volume, min_thickness,

@@ -13,6 +13,7 @@
 #include "meander/curve.h"
 #include "meander/hamiltonian.h"
 #include "meander/mesh.h"
+#include "meander/progress.h"
 #include "meander/quadrangulate.h"
 
 #include <optional>
@@ -126,8 +127,10 @@ struct VariableWire {
 // around them and smoothed again, a few rounds while that helps; a ribbon likewise, but
 // narrowed from the first round (it has no thickness), unless s or t is 1: then its
 // trapezoids meet along the triangles' sides by design. Throws UsageError for
-// s or t outside [0, 1], thickness < 0 or levels < 0.
-VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options);
+// s or t outside [0, 1], thickness < 0 or levels < 0. `progress`, if given, may cancel
+// the search and the clearing rounds (Cancelled).
+VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options,
+                           Progress* progress = nullptr);
 
 // The triangles constant_wire and variable_wire make from a cycle of `cycle_triangles`
 // triangles (TriangleCycle::num_triangles), known before they are made: what a caller

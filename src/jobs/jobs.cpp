@@ -65,7 +65,7 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
     result.mesh = std::move(made.mesh);
     result.radius = made.radius;
   } else {
-    VariableWire made = variable_wire(curve.quads, curve.cycle, variable_options(job));
+    VariableWire made = variable_wire(curve.quads, curve.cycle, variable_options(job), progress);
     result.mesh = std::move(made.mesh);
     known_clear = made.clear;
   }

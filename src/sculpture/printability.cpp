@@ -365,8 +365,8 @@ std::array<int32_t, 2> first_intersecting_pair(const PolygonMesh& mesh, const Tr
 
 // Marks in `hit` both triangles of every intersecting pair.
 void mark_intersecting(const PolygonMesh& mesh, const Triangles& tris, const std::vector<uint8_t>& skip,
-                       std::vector<uint8_t>& hit) {
-  for_each_overlapping_pair(mesh, tris, nullptr, [&](int32_t i, int32_t j) {
+                       std::vector<uint8_t>& hit, Progress* progress) {
+  for_each_overlapping_pair(mesh, tris, progress, [&](int32_t i, int32_t j) {
     if (skip[size_t(i)] || skip[size_t(j)] || tris.face[size_t(i)] == tris.face[size_t(j)]) return;
     // Threads share the flags; any of them writes only 1, so relaxed order is enough.
     std::atomic_ref<uint8_t> hit_i(hit[size_t(i)]), hit_j(hit[size_t(j)]);
@@ -619,12 +619,12 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
   return report;
 }
 
-std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among) {
+std::vector<int32_t> self_intersecting_faces(const PolygonMesh& mesh, std::span<const uint8_t> among, Progress* progress) {
   const Triangles tris = fan(mesh);
   const std::vector<uint8_t> skip = degenerate_triangles(mesh, tris);
   std::vector<uint8_t> hit(tris.corners.size());
   if (among.empty()) {
-    mark_intersecting(mesh, tris, skip, hit);
+    mark_intersecting(mesh, tris, skip, hit, progress);
   } else {
     // The chosen faces' triangles against all: a pair of two chosen triangles is tested
     // from the lower one.

@@ -794,7 +794,7 @@ PolygonMesh smoothed(const PolygonMesh& control, const SubdivideOptions& options
 // Updates `wire`, `control` and `sections`; returns whether the last search found the
 // wire clear.
 bool clear_crossings(PolygonMesh& wire, PolygonMesh& control, Sections& sections, const TriangleCycle& cycle,
-                     const SubdivideOptions& smoothing) {
+                     const SubdivideOptions& smoothing, Progress* progress) {
   const bool ribbon = sections.ribbon;
   std::vector<float>& thinned = sections.thinned;
   std::vector<float>& narrowed = sections.narrowed;
@@ -810,7 +810,8 @@ bool clear_crossings(PolygonMesh& wire, PolygonMesh& control, Sections& sections
   std::vector<uint8_t> changed; // per face of the wire: empty = search it all
   size_t fewest = SIZE_MAX; // crossing faces, and the rounds since they were a tenth fewer
   for (int round = 0, stalled = 0; round < 8 && stalled < 2; ++round) {
-    const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed);
+    check_progress(progress);
+    const std::vector<int32_t> crossing = self_intersecting_faces(wire, changed, progress);
     if (crossing.empty()) return true;
     stalled = double(crossing.size()) < 0.9 * double(fewest) ? 0 : stalled + 1;
     fewest = std::min(fewest, crossing.size());
@@ -844,7 +845,8 @@ bool clear_crossings(PolygonMesh& wire, PolygonMesh& control, Sections& sections
 
 } // namespace
 
-VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options) {
+VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, const VariableWireOptions& options,
+                           Progress* progress) {
   check_variable_options(cycle, options);
   const bool ribbon = options.shape == WireShape::ribbon;
   const Ladder ladder = make_ladder(quads, cycle);
@@ -865,7 +867,7 @@ VariableWire variable_wire(const QuadMesh& quads, const TriangleCycle& cycle, co
   PolygonMesh control = control_mesh(sections, cycle, ladder);
   const SubdivideOptions smoothing{.levels = options.levels, .limit = true};
   PolygonMesh wire = smoothed(control, smoothing, std::nullopt);
-  const bool clear = clearing && clear_crossings(wire, control, sections, cycle, smoothing);
+  const bool clear = clearing && clear_crossings(wire, control, sections, cycle, smoothing, progress);
   return {std::move(wire), clear};
 }
 
