@@ -320,13 +320,13 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(quick.params.wire.levels, 0);
   EXPECT_EQ(quick.params.wire.curve.curve.samples, 2);
   EXPECT_EQ(quick.params.wire.curve.relax, 2); // of a spacing's 20 rounds of relaxation
-  // None where the remeshed surface has more than 10,000 faces.
+  // None where the remeshed surface has more than studio_preview_relax_faces.
   for (const double spacing : {0.5, 0.03}) {
     StudioParams curve{.mode = StudioMode::curve, .preview = true};
     curve.wire.curve.spacing = spacing;
     const int64_t faces = remeshed_faces(surface.repaired.mesh, std::nullopt, spacing, Quadrangulation::dual_simplest);
-    ASSERT_EQ(faces > 10'000, spacing == 0.03) << faces;
-    EXPECT_EQ(make_studio_result(surface, curve).params.wire.curve.relax, faces > 10'000 ? 0 : 2);
+    ASSERT_EQ(faces > studio_preview_relax_faces, spacing == 0.03) << faces;
+    EXPECT_EQ(make_studio_result(surface, curve).params.wire.curve.relax, faces > studio_preview_relax_faces ? 0 : 2);
   }
   const StudioResult level0 = make_studio_result(surface, {.mode = StudioMode::variable_wire, .wire = {.levels = 0}});
   EXPECT_EQ(quick.triangles, level0.triangles);

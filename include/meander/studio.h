@@ -44,6 +44,10 @@ StudioMode parse_studio_mode(std::string_view name);
 // a preview of half a million triangles in about 0.2 s here (docs/studio.md, Speed).
 constexpr int64_t studio_preview_budget = 500'000;
 
+// A preview relaxes a spacing's curve (2 rounds) only on a remeshed surface of at most
+// this many faces: the rounds cost about 0.1 s there, growing with the faces.
+constexpr int64_t studio_preview_relax_faces = 10'000;
+
 // What to make: the mode and the parameters of every mode's job (parameters.h), as the
 // page keeps them all. Curve mode runs wire.curve (make_curve), the wire modes `wire`
 // (its method and shape are the mode's), duotone `duotone`, picture `image`
@@ -58,7 +62,7 @@ struct StudioParams {
   // larger than studio_preview_budget, studio_result_size), a wire still over it drawn as
   // its ribbon, a variable ribbon still over it with one rung a triangle
   // (VariableWireOptions::rungs), levels and subdivide 0, at most 2 rounds of relaxation
-  // with a spacing (none where the remeshed surface has more than 10,000 faces), `radius
+  // with a spacing (none over studio_preview_relax_faces remeshed faces), `radius
   // auto` unchecked (see make_studio_result), a variable wire's self-intersections not
   // cleared (WireJob::clear), and no printability report. The full result follows it.
   // A picture's preview is its line with at most 2 curve samples per segment.

@@ -343,10 +343,11 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   samples = std::min(samples, 2);
   // Two rounds of relaxation show how even the full result will be (it relaxes all) on a
   // small surface: a round costs about 1.4 us a point on two cores, 3.4 points a remeshed
-  // face, so 0.1 s at 10,000 faces. A larger one shows the curve as made on the even
-  // surface, moved onto the input.
+  // face, so 0.1 s at studio_preview_relax_faces. A larger one shows the curve as made
+  // on the even surface, moved onto the input.
   CurveJob& curve = params.wire.curve;
-  const bool small = remeshed_faces(surface.repaired.mesh, curve.model_size, curve.spacing, curve.quadrangulation) <= 10'000;
+  const bool small = remeshed_faces(surface.repaired.mesh, curve.model_size, curve.spacing, curve.quadrangulation) <=
+                     studio_preview_relax_faces;
   curve.relax = small ? std::min(curve.relax, 2) : 0;
   params.wire.levels = 0;
   params.wire.report = false;
