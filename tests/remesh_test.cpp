@@ -1,6 +1,7 @@
 #include "meander/check.h"
 #include "meander/coarsen.h"
 #include "meander/error.h"
+#include "meander/io.h"
 #include "meander/remesh.h"
 #include "meander/shapes.h"
 #include "test_support.h"
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -144,6 +146,52 @@ TEST(Remesh, SameInputSameMesh) {
   const PolygonMesh a = remesh(mesh, {.edge_length = 0.12}), b = remesh(mesh, {.edge_length = 0.12});
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.face_vertices, b.face_vertices);
+}
+
+// CGAL's triangulate_faces cut a polygon of more than four corners by a Delaunay
+// triangulation whose flips ran in the order of its faces' addresses: a Möbius band's
+// seam (its edges split into several) and regular pentagons came out one way or another
+// as the heap stood, and the curve with them. remesh() cuts such polygons itself.
+TEST(Remesh, SameMeshWhateverTheHeapHolds) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  for (const auto& [file, length] : {std::pair{"moebius.obj", 0.28}, {"platonic_shelf.obj", 0.15}}) {
+    SCOPED_TRACE(file);
+    const PolygonMesh mesh = repair(read_mesh(test::shared_meshes() / file), file).mesh;
+    const PolygonMesh first = remesh(mesh, {.edge_length = length});
+    for (int held : {1000, 5000}) {
+      std::vector<std::unique_ptr<char[]>> heap;
+      for (int i = 0; i < held; ++i) heap.emplace_back(new char[size_t(16 + i * 37 % 300)]);
+      const PolygonMesh again = remesh(mesh, {.edge_length = length});
+      EXPECT_TRUE(again.positions == first.positions) << held;
+      EXPECT_TRUE(again.face_vertices == first.face_vertices) << held;
+    }
+    EXPECT_EQ(inspect(first).zero_area_faces, 0);
+  }
+}
+
+// Polygons are cut into triangles before CGAL sees them: a concave one (an L) and one
+// whose corners lie on a circle, each a disc, come out as even discs of triangles, none
+// flat, on the polygon's plane.
+TEST(Remesh, CutsConcaveAndCocircularPolygons) {
+  PolygonMesh l_shape;
+  l_shape.positions = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  l_shape.add_face(std::array{0, 1, 2, 3, 4, 5});
+  PolygonMesh circle;
+  for (int i = 0; i < 12; ++i)
+    circle.positions.push_back({float(std::cos(i * M_PI / 6)), float(std::sin(i * M_PI / 6)), 0.5f});
+  std::vector<int32_t> all(12);
+  for (int i = 0; i < 12; ++i) all[size_t(i)] = i;
+  circle.add_face(all);
+  for (const PolygonMesh* mesh : {&l_shape, &circle}) {
+    for (double length : {0.6, 0.1}) {
+      const PolygonMesh result = remesh(*mesh, {.edge_length = length});
+      EXPECT_EQ(topology_of(result), topology_of(*mesh)) << length;
+      EXPECT_EQ(inspect(result).faces_by_size.at(3), result.num_faces()) << length;
+      EXPECT_EQ(inspect(result).zero_area_faces, 0) << length;
+      EXPECT_NEAR(surface_area(result), surface_area(*mesh), 1e-3 * surface_area(*mesh)) << length;
+      for (const Vec3 p : result.positions) EXPECT_EQ(p.z, mesh->positions[0].z);
+    }
+  }
 }
 
 TEST(Remesh, RefusesBadLengthsAndTooManyFacesBeforeAnyWork) {

@@ -34,8 +34,10 @@ int64_t remeshed_faces_estimate(const PolygonMesh& mesh, double edge_length);
 // non-orientable one (a Möbius band) is cut along a seam of edges into an orientable
 // one, remeshed with its boundary edges (the seam's two sides among them) kept, split to
 // the target length first, and glued back along the seam. A triangle mesh of more than 8
-// times the faces estimated is first coarsened (coarsen.h) to about 5 times as many, and
-// faces whose corners lie on a line are taken away. Deterministic. Throws ParameterError for an edge length that is
+// times the faces estimated is first coarsened (coarsen.h) to about 5 times as many,
+// polygons of more than four corners are cut into triangles (ears, then Delaunay flips,
+// in the polygon's plane) and faces whose corners lie on a line are taken away.
+// Deterministic: the same bytes whatever the heap holds. Throws ParameterError for an edge length that is
 // not a positive number, InputError when the estimate exceeds options.max_faces (naming
 // it), TopologyError when the remeshed surface's topology differs (a part thinner than
 // the edge length, or a component smaller than it). About O(n + m log m) for n input

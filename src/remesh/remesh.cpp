@@ -173,6 +173,162 @@ CutMesh cut_open(const PolygonMesh& mesh, double longest) {
   return cut;
 }
 
+// A triangle of a polygon cut into triangles: its corners (indices into the polygon,
+// counter-clockwise) and the triangle across each side v[i] v[i+1] (-1: the polygon's own).
+struct Triangle {
+  std::array<int32_t, 3> v;
+  std::array<int32_t, 3> across;
+};
+
+// Lawson's flips: each diagonal whose quad's fourth corner lies inside the circle of a
+// triangle (by more than `tolerance`, in the units of the in-circle determinant) is
+// flipped until none is, which leaves the polygon's constrained Delaunay triangulation
+// (corners on one circle: the triangulation as it came, whatever the addresses).
+void make_delaunay(std::vector<Triangle>& tris, const std::vector<double>& u, const std::vector<double>& w,
+                   double tolerance, std::vector<int32_t>& stack) {
+  stack.clear(); // sides, as 3 * triangle + side
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int32_t i = 0; i < 3; ++i)
+      if (tris[t].across[size_t(i)] > int32_t(t)) stack.push_back(int32_t(3 * t) + i);
+  const auto in_circle = [&](int32_t a, int32_t b, int32_t c, int32_t d) {
+    const double ax = u[size_t(a)] - u[size_t(d)], ay = w[size_t(a)] - w[size_t(d)];
+    const double bx = u[size_t(b)] - u[size_t(d)], by = w[size_t(b)] - w[size_t(d)];
+    const double cx = u[size_t(c)] - u[size_t(d)], cy = w[size_t(c)] - w[size_t(d)];
+    return (ax * ax + ay * ay) * (bx * cy - cx * by) - (bx * bx + by * by) * (ax * cy - cx * ay) +
+           (cx * cx + cy * cy) * (ax * by - bx * ay);
+  };
+  const auto orient = [&](int32_t a, int32_t b, int32_t c) {
+    return (u[size_t(b)] - u[size_t(a)]) * (w[size_t(c)] - w[size_t(a)]) -
+           (w[size_t(b)] - w[size_t(a)]) * (u[size_t(c)] - u[size_t(a)]);
+  };
+  const auto side_of = [&](int32_t t, int32_t from) { // the side of t that starts at corner `from`
+    for (int32_t i = 0; i < 3; ++i)
+      if (tris[size_t(t)].v[size_t(i)] == from) return i;
+    return -1;
+  };
+  while (!stack.empty()) {
+    const int32_t t = stack.back() / 3, i = stack.back() % 3;
+    stack.pop_back();
+    const int32_t o = tris[size_t(t)].across[size_t(i)];
+    if (o < 0) continue;
+    const int32_t a = tris[size_t(t)].v[size_t(i)], b = tris[size_t(t)].v[size_t((i + 1) % 3)],
+                  c = tris[size_t(t)].v[size_t((i + 2) % 3)];
+    const int32_t j = side_of(o, b);
+    if (j < 0 || tris[size_t(o)].v[size_t((j + 1) % 3)] != a) continue; // a side since flipped away
+    const int32_t d = tris[size_t(o)].v[size_t((j + 2) % 3)];
+    if (!(in_circle(a, b, c, d) > tolerance) || !(orient(a, d, c) > 0) || !(orient(d, b, c) > 0)) continue;
+    // (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c).
+    const int32_t ad = tris[size_t(o)].across[size_t((j + 1) % 3)], db = tris[size_t(o)].across[size_t((j + 2) % 3)];
+    const int32_t bc = tris[size_t(t)].across[size_t((i + 1) % 3)], ca = tris[size_t(t)].across[size_t((i + 2) % 3)];
+    tris[size_t(t)] = {{a, d, c}, {ad, o, ca}};
+    tris[size_t(o)] = {{d, b, c}, {db, bc, t}};
+    if (ad >= 0) tris[size_t(ad)].across[size_t(side_of(ad, d))] = t;
+    if (bc >= 0) tris[size_t(bc)].across[size_t(side_of(bc, c))] = o;
+    for (int32_t side : {3 * t, 3 * t + 2, 3 * o, 3 * o + 1}) stack.push_back(side);
+  }
+}
+
+// Polygons of more than four corners cut into triangles here rather than by CGAL's
+// triangulate_faces, whose constrained Delaunay triangulation flips edges in the order of
+// its faces' addresses: a polygon with four points on a circle (a seam's split edge, a
+// regular polygon) was cut one way or the other as the allocator placed them, so a
+// Möbius band's curve changed with an unrelated command-line option. Ears go best first
+// (the most equilateral of those that are convex and hold no other corner) in the plane
+// of the polygon's Newell normal, then Lawson's flips make the cut Delaunay, as CGAL's
+// was; quads keep CGAL's fixed rule. O(k^2) for k corners.
+PolygonMesh triangulate_polygons(PolygonMesh mesh) {
+  bool polygons = false;
+  for (int32_t f = 0; f < mesh.num_faces() && !polygons; ++f) polygons = mesh.face(f).size() > 4;
+  if (!polygons) return mesh;
+  PolygonMesh out;
+  out.positions = std::move(mesh.positions);
+  out.face_vertices.reserve(mesh.face_vertices.size() * 3);
+  std::vector<int32_t> prev, next, across, stack;
+  std::vector<double> u, w, score;
+  std::vector<Triangle> tris;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::span<const int32_t> face = mesh.face(f);
+    const size_t k = face.size();
+    if (k <= 4) {
+      out.face_vertices.insert(out.face_vertices.end(), face.begin(), face.end());
+      out.face_start.push_back(int32_t(out.face_vertices.size()));
+      continue;
+    }
+    Vec3d normal{};
+    for (size_t i = 0; i < k; ++i) {
+      const Vec3d a = to_double(out.positions[size_t(face[i])]), b = to_double(out.positions[size_t(face[(i + 1) % k])]);
+      normal = normal + Vec3d{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    }
+    if (!(norm(normal) > 0))
+      throw TopologyError("remeshing: polygon " + std::to_string(f) + " has no area, so it cannot be triangulated");
+    const Vec3d axis = std::abs(normal.x) < std::abs(normal.y) && std::abs(normal.x) < std::abs(normal.z) ? Vec3d{1, 0, 0}
+                       : std::abs(normal.y) < std::abs(normal.z)                                        ? Vec3d{0, 1, 0}
+                                                                                                        : Vec3d{0, 0, 1};
+    const Vec3d e1 = cross(normal, axis), e2 = cross(normal, e1);
+    u.resize(k), w.resize(k), prev.resize(k), next.resize(k), score.resize(k), across.resize(k);
+    for (size_t i = 0; i < k; ++i) {
+      const Vec3d p = to_double(out.positions[size_t(face[i])]);
+      u[i] = dot(p, e1), w[i] = dot(p, e2);
+      prev[i] = int32_t((i + k - 1) % k), next[i] = int32_t((i + 1) % k);
+    }
+    // Twice the signed area of (a, b, c) in the plane, positive if counter-clockwise
+    // seen along the normal (as the polygon runs), and what counts as none: corners split
+    // along an edge in floats stray from it by rounding.
+    const auto orient = [&](size_t a, size_t b, size_t c) {
+      return (u[b] - u[a]) * (w[c] - w[a]) - (w[b] - w[a]) * (u[c] - u[a]);
+    };
+    const auto [u_low, u_high] = std::minmax_element(u.begin(), u.begin() + ptrdiff_t(k));
+    const auto [w_low, w_high] = std::minmax_element(w.begin(), w.begin() + ptrdiff_t(k));
+    const double flat = 1e-6 * std::max(*u_high - *u_low, *w_high - *w_low) * std::max(*u_high - *u_low, *w_high - *w_low);
+    // An ear's merit: its shape (4 sqrt 3 area over the squared sides, 1 if equilateral),
+    // lowered by 2 if another corner lies in it or on its new side and by 4 if it is not
+    // convex, so that a polygon the plane makes self-overlapping is still cut.
+    const auto merit = [&](size_t b) {
+      const size_t a = size_t(prev[b]), c = size_t(next[b]);
+      const double area2 = orient(a, b, c);
+      const auto sq = [&](size_t i, size_t j) { return (u[i] - u[j]) * (u[i] - u[j]) + (w[i] - w[j]) * (w[i] - w[j]); };
+      const double shape = 2 * std::sqrt(3.0) * area2 / std::max(sq(a, b) + sq(b, c) + sq(c, a), flat);
+      if (!(area2 > flat)) return shape - 4;
+      for (size_t p = size_t(next[c]); p != a; p = size_t(next[p]))
+        if (orient(a, b, p) > -flat && orient(b, c, p) > -flat && orient(c, a, p) > -flat) return shape - 2;
+      return shape;
+    };
+    for (size_t i = 0; i < k; ++i) score[i] = merit(i);
+    // across[v]: the triangle beyond the side from v to next[v] (-1: the polygon's own);
+    // each ear's new side, from c back to a, is its side 2.
+    std::fill(across.begin(), across.begin() + ptrdiff_t(k), -1);
+    const auto add = [&](size_t a, size_t b, size_t c) {
+      const int32_t t = int32_t(tris.size());
+      tris.push_back({{int32_t(a), int32_t(b), int32_t(c)}, {across[a], across[b], -1}});
+      for (size_t v : {a, b})
+        if (across[v] >= 0) tris[size_t(across[v])].across[2] = t;
+      return t;
+    };
+    size_t start = 0;
+    tris.clear();
+    for (size_t left = k; left > 3; --left) {
+      size_t best = start;
+      for (size_t i = size_t(next[start]); i != start; i = size_t(next[i]))
+        if (score[i] > score[best]) best = i;
+      const size_t a = size_t(prev[best]), c = size_t(next[best]);
+      across[a] = add(a, best, c);
+      next[a] = int32_t(c), prev[c] = int32_t(a);
+      start = a;
+      score[a] = merit(a), score[c] = merit(c);
+    }
+    const size_t a = size_t(prev[start]), c = size_t(next[start]);
+    const int32_t last = add(a, start, c);
+    tris[size_t(last)].across[2] = across[c];
+    if (across[c] >= 0) tris[size_t(across[c])].across[2] = last;
+    make_delaunay(tris, u, w, flat * flat, stack);
+    for (const Triangle& t : tris) {
+      for (int32_t i : t.v) out.face_vertices.push_back(face[size_t(i)]);
+      out.face_start.push_back(int32_t(out.face_vertices.size()));
+    }
+  }
+  return out;
+}
+
 // The topology remeshing must keep: per component (Euler characteristic, boundary loops,
 // orientable), sorted.
 using Topology = std::vector<std::tuple<int64_t, int32_t, bool>>;
@@ -245,7 +401,8 @@ PolygonMesh remesh(const PolygonMesh& mesh, const RemeshOptions& options, const 
   // CGAL's remeshing then starts from fewer, and the projection onto the input restores
   // the shape. CGAL keeps protected edges no longer than 4/3 of the target.
   const bool fine = mesh.face_vertices.size() == 3 * size_t(mesh.num_faces()) && mesh.num_faces() > 8 * estimate;
-  const CutMesh cut = cut_open(fine ? coarsen(mesh, kCoarse * length) : mesh, length * 4 / 3);
+  CutMesh cut = cut_open(fine ? coarsen(mesh, kCoarse * length) : mesh, length * 4 / 3);
+  cut.mesh = triangulate_polygons(std::move(cut.mesh));
   const PolygonMesh& open = cut.mesh;
   auto copy_of = [&cut](int32_t v) { return cut.original.empty() ? v : cut.original[size_t(v)]; };
 
