@@ -164,6 +164,7 @@ gallery: build
 	MEANDER=$(BUILD)/meander docs/make_gallery.sh
 	MEANDER=$(CURDIR)/$(BUILD)/meander MESHES=$(CURDIR)/../shared/meshes docs/make_wire_figures.sh
 	MEANDER=$(CURDIR)/$(BUILD)/meander MESHES=$(CURDIR)/../shared/meshes docs/make_duotone_figures.sh
+	MEANDER=$(CURDIR)/$(BUILD)/meander docs/make_printing_figures.sh
 
 clean:
 	rm -rf $(BUILD) out

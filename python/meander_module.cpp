@@ -360,7 +360,7 @@ py::tuple wire(const Mesh& mesh, bool strict, int64_t max_faces, py::handle prog
   warn_all(mesh.name, "repaired", repairs);
   warn_all(mesh.name, "note", notices);
   warn_all(mesh.name, "note", notes);
-  py::object report = json_object(printability_json(made.report));
+  py::object report = json_object(wire_report_json(made, job));
   report["radius"] = made.radius;
   return py::make_tuple(points_array(std::move(made.mesh.positions)),
                         faces_array(std::move(made.mesh.face_vertices), made.mesh.face_start), report);
@@ -655,8 +655,8 @@ PYBIND11_MODULE(_meander, m) {
         "A wire or ribbon along the curve: (vertices (N, 3) float32, faces (F, k) int32 (quads or triangles), report "
         "dict), the report being "
         "`--report`'s printability (with the radius used).\n\n"
-        "Parameters are the CLI's (`meander wire --help`, meander.parameters('wire')): method, shape, radius, sides, s, t, "
-        "thickness, levels, min_thickness, nozzle, and the curve's. strict, max_faces and progress as in curve().");
+        "Parameters are the CLI's (`meander wire --help`, meander.parameters('wire')): method, shape, radius, sides, bridges, "
+        "s, t, thickness, levels, min_thickness, nozzle, and the curve's (with bridges, the report has a bridges dict). strict, max_faces and progress as in curve().");
   m.def("duotone", &duotone, "mesh"_a, py::kw_only(), "strict"_a = false, "max_faces"_a = 0, "progress"_a = py::none(),
         "The surface painted in two colours split by one curve per component: (vertices (N, 3) float32, faces (F, 4) int32, "
         "uv (4F, 2) float32 per corner, texture (H, W, 4) uint8, separating curves).\n\n"

@@ -80,7 +80,7 @@ void run_wire(const WireArgs& a) {
   write_mesh(wire.mesh, a.output, {.millimetres = job.curve.model_size.has_value()});
   log.lap("write wire");
   const PrintabilityReport& report = wire.report;
-  if (!a.report.empty()) write_bytes(a.report, printability_json(report) + "\n");
+  if (!a.report.empty()) write_bytes(a.report, wire_report_json(wire, job) + "\n");
   std::string picture_written;
   if (!a.png.empty()) {
     picture_written = write_picture(wire_scene(std::move(wire.mesh), curve, job.shape, occluder_style(a.picture)), picture,
@@ -89,6 +89,15 @@ void run_wire(const WireArgs& a) {
   }
   std::string summary = a.output + ": " + printability_summary(report);
   if (job.method == WireMethod::constant) summary += " Radius " + parameter_text(parameters::radius, wire.radius) + (job.radius ? "." : " (auto).");
+  if (job.bridges) {
+    const BridgePlan& bridges = wire.bridges;
+    summary += " Bridges: " + std::to_string(bridges.ends.size()) + ", the longest stretch without one " +
+               parameter_text(parameters::bridges, std::optional(bridges.longest_stretch)) + " (asked " +
+               parameter_text(parameters::bridges, job.bridges) + "): " +
+               (bridges.every_pass_tied ? "every pass is tied to the rest."
+                     : bridges.one_piece ? "some passes are not tied (no neighbouring pass near enough, or in the way)."
+                                         : "the curves are not all joined into one piece.");
+  }
   if (!wire.surface_crossings.empty())
     summary += " Note: the surface itself crosses itself (" + std::to_string(wire.surface_crossings.size()) +
                " of the cycle's triangles, e.g. number " + std::to_string(wire.surface_crossings.front()) +

@@ -6,6 +6,7 @@
 // of a result: the *_scene functions.
 #pragma once
 
+#include "meander/bridges.h"
 #include "meander/drawing.h"
 #include "meander/duotone.h"
 #include "meander/pipeline.h"
@@ -34,6 +35,8 @@ struct WireJob {
   WireShape shape = WireShape::wire;
   std::optional<double> radius; // constant: > 0, or none for the largest clear one
   int sides = 8;                // constant wire
+  // Constant wire: bridges (bridges.h) so that no stretch longer than this goes without one.
+  std::optional<double> bridges;
   double s = 0.6, t = 0.6, thickness = 0;
   int levels = 2;
   // Variable: the mesh is first made ready for slabs (SlabMeshOptions: stars, caps over
@@ -63,6 +66,9 @@ int64_t wire_triangles(int64_t cycle_triangles, const WireJob& job);
 struct WireResult {
   PolygonMesh mesh;
   double radius = 0; // constant: the radius used
+  // With WireJob::bridges: where they are (ends into the curve's points), the longest
+  // stretch without one, whether they join every curve.
+  BridgePlan bridges;
   PrintabilityReport report;
   // Of a self-intersecting wire: the cycle's triangles that cross others
   // (crossing_cycle_triangles), where no wire that follows the surface can be clear.
@@ -75,6 +81,10 @@ struct WireResult {
 // to `times` if given, and tells `progress` (which may cancel it: Cancelled) if given.
 WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* times = nullptr,
                      Progress* progress = nullptr);
+
+// The printability report as JSON (printability_json), with WireJob::bridges a
+// "bridges" object too: count, longest_stretch, every_pass_tied, one_piece.
+std::string wire_report_json(const WireResult& wire, const WireJob& job);
 
 // What the slab mesh changed, as sentences ("flipped 3 edges facing an angle over 120
 // degrees"), none when nothing; for the user to read beside the result.

@@ -78,6 +78,7 @@ inline constexpr std::string_view method_choices[] = {"constant", "variable"};
 inline constexpr std::string_view shape_choices[] = {"wire", "ribbon"};
 inline constexpr std::string_view radius_choices[] = {"auto"};
 inline constexpr std::string_view spacing_choices[] = {"none"};
+inline constexpr std::string_view bridges_choices[] = {"none"};
 inline constexpr std::string_view model_size_choices[] = {"none"};
 inline constexpr std::string_view branches_choices[] = {"none"};
 inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
@@ -130,6 +131,13 @@ inline constexpr Parameter radius{.name = "radius",
                                           "--spacing: a fifth of the spacing, or less where the curve comes nearer)",
                                   .choices = radius_choices,
                                   .length = true};
+inline constexpr Parameter bridges{.name = "bridges",
+                                   .help = "constant wire: fuse neighbouring passes with struts where they come closest, "
+                                           "so that no stretch of the wire longer than this goes without one and the "
+                                           "print is one rigid piece, in mesh units (millimetres with a model size; "
+                                           "about 4 spacings; none: a free loop)",
+                                   .choices = bridges_choices,
+                                   .length = true};
 inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon", .min = 3, .max = 64};
 inline constexpr Parameter s{.name = "s", .help = "variable: trapezoid size across the curve (1 covers the surface)", .min = 0, .max = 1};
 inline constexpr Parameter t{.name = "t", .help = "variable: trapezoid size along the curve", .min = 0, .max = 1};
@@ -251,6 +259,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit_parameters(job.curve, visit);
     visit(parameters::radius, job.radius);
     visit(parameters::sides, job.sides);
+    visit(parameters::bridges, job.bridges);
     visit(parameters::s, job.s);
     visit(parameters::t, job.t);
     visit(parameters::thickness, job.thickness);

@@ -43,6 +43,10 @@ struct PrintabilityOptions {
   // The narrowest gap the printer keeps open, in mesh units (a nozzle width): parts of
   // the mesh nearer anywhere make it not printable. 0: the gap is not judged.
   double required_gap = 0;
+  // Per vertex (empty: none), 1 where no thickness or gap is measured: beside the crease
+  // where a bridge meets a wire, whose V a vertex's ray takes for a gap of almost nothing
+  // (a printer fills it).
+  std::span<const uint8_t> unmeasured;
 };
 
 // One edge-connected component, as inspect() numbers them (by their first face).

@@ -58,7 +58,8 @@ def curve(mesh: Mesh, *, certificate: Literal[True], strict: bool = False, max_f
 
 def wire(mesh: Mesh, *, strict: bool = False, max_faces: int = 0, progress: Progress | None = None,
          method: Literal["constant", "variable"] = "constant", shape: Literal["wire", "ribbon"] = "wire",
-         radius: Length | None = None, sides: int = 8, s: float = 0.6, t: float = 0.6, thickness: Length = 0,
+         radius: Length | None = None, sides: int = 8, bridges: Length | None = None, s: float = 0.6, t: float = 0.6,
+         thickness: Length = 0,
          cap_angle: float = 120, keep_faces: bool = False, levels: int = 2, min_thickness: Length = 0,
          nozzle: Length = 0.4, **curve_parameters: Any) -> tuple[Float32Array, Int32Array, dict[str, Any]]:
     """faces: (F, 4) quads or (F, 3) triangles, as the method makes them."""

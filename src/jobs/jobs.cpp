@@ -3,10 +3,16 @@
 #include "meander/connectivity.h"
 #include "meander/error.h"
 #include "meander/parameters.h"
+#include "meander/solid_union.h"
 #include "meander/subdivide.h"
+#include "core/point_grid.h"
 #include "stages.h"
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <cstdio>
+#include <tuple>
 
 namespace meander {
 
@@ -19,6 +25,48 @@ ConstantWireOptions constant_options(const WireJob& job) {
 VariableWireOptions variable_options(const WireJob& job) {
   return {.shape = job.shape, .s = job.s, .t = job.t, .thickness = job.thickness, .levels = job.levels, .clear = job.clear,
           .rungs = job.rungs};
+}
+
+double covered_area(const QuadMesh& quads) {
+  double area = 0;
+  for (const std::array<int32_t, 4>& q : quads.quads) {
+    const Vec3d a = to_double(quads.positions[size_t(q[0])]), b = to_double(quads.positions[size_t(q[1])]),
+                c = to_double(quads.positions[size_t(q[2])]), d = to_double(quads.positions[size_t(q[3])]);
+    area += 0.5 * (norm(cross(b - a, c - a)) + norm(cross(c - a, d - a)));
+  }
+  return area;
+}
+
+double total_length(const Polylines& curves) {
+  double length = 0;
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const std::span<const Vec3> line = curves.polyline(k);
+    for (size_t i = 0; i < line.size(); ++i) length += norm(to_double(line[(i + 1) % line.size()]) - to_double(line[i]));
+  }
+  return length;
+}
+
+// Per vertex of a wire with bridges fused in: 1 within `reach` of the creases where
+// they meet (vertices the union made, at neither's points), where the thickness and gap
+// rays would measure the crease's V.
+std::vector<uint8_t> beside_creases(const PolygonMesh& united, const PolygonMesh& tube, const PolygonMesh& struts,
+                                    double reach) {
+  const auto less = [](Vec3 a, Vec3 b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::vector<Vec3> before = tube.positions;
+  before.insert(before.end(), struts.positions.begin(), struts.positions.end());
+  std::sort(before.begin(), before.end(), less);
+  std::vector<Vec3> crease;
+  for (const Vec3 p : united.positions)
+    if (!std::binary_search(before.begin(), before.end(), p, less)) crease.push_back(p);
+  std::vector<uint8_t> near(united.positions.size(), 0);
+  if (crease.empty()) return near;
+  const PointGrid grid(crease, reach, bounding_box(united.positions));
+  for (size_t v = 0; v < near.size(); ++v)
+    grid.for_each_near(united.positions[v], [&](size_t rank) {
+      near[v] = norm(crease[size_t(grid.ids()[rank])] - united.positions[v]) <= reach;
+      return !near[v];
+    });
+  return near;
 }
 
 } // namespace
@@ -50,6 +98,7 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
   stages.begin("wire");
   WireResult result;
   bool known_clear = false; // variable_wire searched its result already
+  std::vector<uint8_t> unmeasured; // of a bridged wire: beside_creases
   if (job.method == WireMethod::constant) {
     // A curve moved onto the input surface (CurveJob::spacing) is swept where it lies, by
     // default a fifth of the spacing thick, so that neighbouring passes stay clear by
@@ -64,6 +113,30 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
     if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");
     result.mesh = std::move(made.mesh);
     result.radius = made.radius;
+    if (job.bridges) {
+      stages.begin("bridges");
+      Polylines swept; // the centre line the tube was swept along
+      if (curve.normals.empty()) swept = cycle_curves(curve.quads, curve.cycle, options.curve);
+      const Polylines& centre = curve.normals.empty() ? swept : curve.curves;
+      // Passes are bridged up to 1.5 spacings apart (the spacing asked for, or the one a
+      // covering curve has: the surface's area over the curve's length), or 3 radii for
+      // a wire thicker than that leaves room for.
+      const double spacing = job.curve.spacing ? *job.curve.spacing : covered_area(curve.quads) / total_length(centre);
+      result.bridges = plan_bridges(
+          centre, {.max_stretch = *job.bridges, .radius = made.radius, .reach = std::max(1.5 * spacing, 3 * made.radius)});
+      if (!result.bridges.ends.empty()) { // none where no pass is near enough: the report says so
+        const PolygonMesh struts = bridge_solids(centre, result.bridges, made.radius, job.sides);
+        PolygonMesh united;
+        try {
+          united = unite_solids(result.mesh, struts, "wire", "bridges");
+        } catch (const InputError& e) {
+          throw TopologyError(std::string(e.what()) + " at radius " + parameter_text(parameters::radius, std::optional(made.radius)) +
+                              ", so bridges cannot be fused into it: choose a smaller radius (auto: the largest clear one)");
+        }
+        unmeasured = beside_creases(united, result.mesh, struts, 1.5 * made.radius);
+        result.mesh = std::move(united);
+      }
+    }
   } else {
     VariableWire made = variable_wire(curve.quads, curve.cycle, variable_options(job), progress);
     result.mesh = std::move(made.mesh);
@@ -82,11 +155,23 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
                     .thickness = thickness,
                     .required_thickness = job.min_thickness > 0 ? job.min_thickness : millimetres ? 2 * job.nozzle : 0,
                     .nozzle = thickness ? job.nozzle : 0,
-                    .required_gap = millimetres && thickness ? job.nozzle : 0},
+                    .required_gap = millimetres && thickness ? job.nozzle : 0,
+                    .unmeasured = unmeasured},
       progress);
   if (result.report.self_intersecting) result.surface_crossings = crossing_cycle_triangles(curve.quads, curve.cycle);
   stages.end();
   return result;
+}
+
+std::string wire_report_json(const WireResult& wire, const WireJob& job) {
+  if (!job.bridges) return printability_json(wire.report);
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(printability_json(wire.report));
+  j["bridges"] = {{"count", wire.bridges.ends.size()},
+                  {"longest_stretch", wire.bridges.longest_stretch},
+                  {"asked", *job.bridges},
+                  {"every_pass_tied", wire.bridges.every_pass_tied},
+                  {"one_piece", wire.bridges.one_piece}};
+  return j.dump(2);
 }
 
 std::vector<std::string> slab_mesh_notes(const CurveResult& curve, const WireJob& job) {

@@ -429,7 +429,7 @@ void skip_triangles_around_vertex(const RTCFilterFunctionNArguments* args) {
 // depend on which of several triangles tied at it Embree's tree reports, so the result
 // does not depend on the number of threads the tree was built with.
 void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::vector<int8_t>& inward, bool gaps,
-                   PrintabilityReport& report, Progress* progress) {
+                   std::span<const uint8_t> unmeasured, PrintabilityReport& report, Progress* progress) {
   const int32_t nv = mesh.num_vertices();
   // Float, and no per-vertex result kept (a reduction instead): on large meshes the
   // cost is mostly in touching fresh memory.
@@ -514,7 +514,7 @@ void min_thickness(const PolygonMesh& mesh, const Triangles& tris, const std::ve
           const int32_t side = vertex_side[size_t(v)];
           const Vec3 n = normal[size_t(v)];
           const double length = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
-          if (side == 0 || length == 0) continue;
+          if (side == 0 || length == 0 || (!unmeasured.empty() && unmeasured[size_t(v)])) continue;
           const Vec3 origin = mesh.positions[size_t(v)];
           context.vertex = v;
           for (int way = 0; way < (gaps ? 2 : 1); ++way) {
@@ -570,6 +570,9 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
       if (!is_finite(mesh.positions[size_t(v)]))
         throw InputError("mesh: vertex " + std::to_string(v) + " (used by face " + std::to_string(f) +
                          ") has a non-finite position");
+  if (!options.unmeasured.empty() && options.unmeasured.size() != mesh.positions.size())
+    throw UsageError("unmeasured: expected one flag per vertex (" + std::to_string(mesh.positions.size()) + "), got " +
+                     std::to_string(options.unmeasured.size()));
   if (!(options.required_thickness >= 0) || !std::isfinite(options.required_thickness))
     throw UsageError("required thickness " + std::to_string(options.required_thickness) +
                      ": expected a finite number, 0 or more");
@@ -609,7 +612,7 @@ PrintabilityReport check_printability(const PolygonMesh& mesh, const Printabilit
     std::vector<int8_t> inward(size_t(mesh.num_faces()), 0);
     for (int32_t f = 0; f < mesh.num_faces(); ++f)
       if (const int32_t k = topology.face_components[size_t(f)]; k >= 0) inward[size_t(f)] = int8_t(-sign(report.components[size_t(k)].volume));
-    min_thickness(mesh, tris, inward, options.nozzle > 0, report, progress);
+    min_thickness(mesh, tris, inward, options.nozzle > 0, options.unmeasured, report, progress);
     if (options.nozzle > 0 && !report.bounding_box.empty()) {
       // Scaling the whole mesh scales both; the larger of the two factors does.
       const double factor = std::max(2 * options.nozzle / report.min_thickness, options.nozzle / report.min_gap);

@@ -166,6 +166,22 @@ def test_a_wire_is_the_command_lines(shared, cli, tmp_path):
     assert report == expected
 
 
+def test_a_bridged_wire_is_the_command_lines_one_piece(shared, cli, tmp_path):
+    source = shared / "eight.off"
+    out, report_path = tmp_path / "bridged.ply", tmp_path / "report.json"
+    subprocess.run([cli, "wire", str(source), "-o", str(out), "--report", str(report_path), "--model-size", "80mm",
+                    "--spacing", "4mm", "--bridges", "16mm"], check=True, capture_output=True)
+    vertices, faces, report = meander.wire(meander.read(source), model_size="80mm", spacing="4mm", bridges="16mm")
+    written = meander.read(out)
+    np.testing.assert_array_equal(vertices, written.vertices)
+    np.testing.assert_array_equal(faces, written.faces)
+    report.pop("radius")
+    assert report == json.loads(report_path.read_text())
+    assert report["bridges"]["count"] > 0 and report["bridges"]["one_piece"] is True
+    assert len(report["components"]) == 1 and report["components"][0]["euler_characteristic"] < 0
+    assert report["self_intersecting"] is False and report["watertight"] is True
+
+
 def test_a_duotone_has_its_texture_and_coordinates_and_its_curve(sphere, tmp_path):
     vertices, faces, uv, texture, curves = meander.duotone(sphere, texture_size=256, colors=["#ff0000", "#102030"], subdivide=1)
     assert faces.shape[1] == 4 and faces.max() < len(vertices)

@@ -1,0 +1,19 @@
+// The union of two closed solids, for bridges fused into a wire (bridges.h).
+#pragma once
+
+#include "meander/mesh.h"
+
+#include <string_view>
+
+namespace meander {
+
+// The boundary of the union of the solids that two closed, outward meshes bound (neither
+// intersecting itself; they may intersect each other), as triangles, by CGAL's
+// corefinement (Polygon Mesh Processing, exact predicates). Throws InputError when a
+// mesh is not closed, has a polygon of more than four corners or intersects itself,
+// naming it ("the wire intersects itself"), and TopologyError when CGAL cannot make the
+// union a manifold surface. Deterministic.
+PolygonMesh unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name = "first mesh",
+                         std::string_view second_name = "second mesh");
+
+} // namespace meander

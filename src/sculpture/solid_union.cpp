@@ -1,0 +1,127 @@
+#include "meander/solid_union.h"
+
+#include "meander/error.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <vector>
+
+namespace meander {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+// The mesh as a Surface_mesh of triangles (quads cut by CGAL's fixed rule, the flatter
+// diagonal); `name` for the messages.
+SurfaceMesh to_surface(const PolygonMesh& mesh, std::string_view name) {
+  SurfaceMesh surface;
+  std::vector<SurfaceMesh::Vertex_index> vertex;
+  vertex.reserve(mesh.positions.size());
+  for (const Vec3 p : mesh.positions) vertex.push_back(surface.add_vertex({p.x, p.y, p.z}));
+  std::vector<SurfaceMesh::Vertex_index> corners;
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    corners.clear();
+    for (int32_t v : mesh.face(f)) corners.push_back(vertex[size_t(v)]);
+    if (mesh.face(f).size() > 4)
+      throw InputError("union: the " + std::string(name) + "'s face " + std::to_string(f) +
+                       " has more than four corners (triangles and quads only)");
+    if (surface.add_face(corners) == SurfaceMesh::null_face())
+      throw InputError("union: the " + std::string(name) + "'s face " + std::to_string(f) +
+                       " does not fit an oriented manifold surface");
+  }
+  PMP::triangulate_faces(surface);
+  return surface;
+}
+
+SurfaceMesh solid(const PolygonMesh& mesh, std::string_view name) {
+  SurfaceMesh surface = to_surface(mesh, name);
+  if (!CGAL::is_closed(surface)) throw InputError("union: the " + std::string(name) + " is not closed");
+  if (PMP::does_self_intersect(surface)) throw InputError("union: the " + std::string(name) + " intersects itself");
+  return surface;
+}
+
+PolygonMesh to_polygons(const SurfaceMesh& surface) {
+  PolygonMesh mesh;
+  std::vector<int32_t> index(surface.num_vertices() + surface.number_of_removed_vertices(), -1);
+  for (SurfaceMesh::Vertex_index v : surface.vertices()) {
+    index[v.idx()] = mesh.num_vertices();
+    const auto& p = surface.point(v);
+    mesh.positions.push_back({float(p.x()), float(p.y()), float(p.z())});
+  }
+  for (SurfaceMesh::Face_index f : surface.faces()) {
+    for (SurfaceMesh::Vertex_index v : surface.vertices_around_face(surface.halfedge(f)))
+      mesh.face_vertices.push_back(index[v.idx()]);
+    mesh.face_start.push_back(int32_t(mesh.face_vertices.size()));
+  }
+  return mesh;
+}
+
+// CGAL's corefinement numbers the union's vertices and faces in an order that follows
+// heap addresses (the same surface came out numbered otherwise with -v on the command
+// line): renumbered here from the geometry alone, faces (triangles) by their corners' positions
+// (each face rotated to start at its least, so its orientation stays), vertices as the
+// faces first meet them.
+PolygonMesh in_order_of_positions(const PolygonMesh& mesh) {
+  const auto less = [](Vec3 a, Vec3 b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::vector<std::array<int32_t, 3>> faces(size_t(mesh.num_faces()));
+  for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::span<const int32_t> c = mesh.face(f);
+    size_t first = 0;
+    for (size_t k = 1; k < 3; ++k)
+      if (less(mesh.positions[size_t(c[k])], mesh.positions[size_t(c[first])])) first = k;
+    faces[size_t(f)] = {c[first], c[(first + 1) % 3], c[(first + 2) % 3]};
+  }
+  std::sort(faces.begin(), faces.end(), [&](const auto& a, const auto& b) {
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3 p = mesh.positions[size_t(a[k])], q = mesh.positions[size_t(b[k])];
+      if (less(p, q)) return true;
+      if (less(q, p)) return false;
+    }
+    return false;
+  });
+  PolygonMesh result;
+  std::vector<int32_t> index(mesh.positions.size(), -1);
+  for (const auto& face : faces) {
+    for (int32_t v : face) {
+      if (index[size_t(v)] < 0) {
+        index[size_t(v)] = result.num_vertices();
+        result.positions.push_back(mesh.positions[size_t(v)]);
+      }
+      result.face_vertices.push_back(index[size_t(v)]);
+    }
+    result.face_start.push_back(int32_t(result.face_vertices.size()));
+  }
+  return result;
+}
+
+} // namespace
+
+PolygonMesh unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name,
+                         std::string_view second_name) {
+  SurfaceMesh a = solid(first, first_name), b = solid(second, second_name), out;
+  if (!PMP::corefine_and_compute_union(a, b, out))
+    throw TopologyError("union: the solids' union is not a manifold surface (they touch along an edge or at a point)");
+  // Points where the surfaces cross are made in double; rounded to the floats Meander
+  // keeps, a sliver's corners may fall on a line. Such faces go (collapsed or flipped
+  // away by CGAL), so that no face is flat and none cuts another.
+  SurfaceMesh rounded = to_surface(in_order_of_positions(to_polygons(out)), "union");
+  PMP::remove_degenerate_faces(rounded);
+  rounded.collect_garbage();
+  return to_polygons(rounded);
+}
+
+} // namespace meander
