@@ -41,9 +41,17 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   };
   const auto point = [&](size_t i) { return to_double(centre.points[i]); };
 
-  // Each point's candidate: the nearest point of another pass within reach.
-  const double r = options.radius, reach = options.reach;
-  const PointGrid grid(centre.points, std::max(reach, 2.5 * r), bounding_box(centre.points));
+  // The longest step between consecutive points.
+  double step = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t c = curve_of[i];
+    const size_t next = int32_t(i) + 1 < centre.start[size_t(c) + 1] ? i + 1 : size_t(centre.start[size_t(c)]);
+    step = std::max(step, norm(point(next) - point(i)));
+  }
+  // Each point's candidate: the nearest point of another pass within reach. A cell of the
+  // grid is as wide as that and as what the clearance below looks for around a sample.
+  const double r = options.radius, reach = options.reach, clearance = 3 * r;
+  const PointGrid grid(centre.points, std::max(reach, clearance + (step + r) / 2), bounding_box(centre.points));
   const std::span<const int32_t> ids = grid.ids();
   std::vector<std::tuple<double, int32_t, int32_t>> candidates; // (distance, i, j)
   for (size_t i = 0; i < n; ++i) {
@@ -62,20 +70,15 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
 
   // Whether a bridge's axis keeps 3 radii from every other part of the wire (points more
   // than reach + 2 radii along their curve from both ends) and from the bridges so far:
-  // a gap of more than a radius between the strut and the tube beside it.
-  // Curve points are tested, widened by half the longest step between them.
-  double step = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t c = curve_of[i];
-    const size_t next = int32_t(i) + 1 < centre.start[size_t(c) + 1] ? i + 1 : size_t(centre.start[size_t(c)]);
-    step = std::max(step, norm(point(next) - point(i)));
-  }
+  // a gap of more than a radius between the strut and the tube beside it. Curve points
+  // are tested, widened by half the longest step between them, around samples of the
+  // axis a radius apart.
   BridgePlan plan;
   const auto clear = [&](size_t i, size_t j) {
     const Vec3 p = centre.points[i], q = centre.points[j];
     // Bridges no longer than reach whose middles lie farther apart than reach + 3 radii
     // keep 3 radii apart.
-    const double clearance = 3 * r, near = (reach + clearance) * (reach + clearance);
+    const double near = (reach + clearance) * (reach + clearance);
     for (const auto& [a, b] : plan.ends) {
       const Vec3 s = centre.points[size_t(a)], t = centre.points[size_t(b)], offset = (s + t - p - q) * 0.5f;
       if (dot(offset, offset) < near && segment_distance(p, q, s, t) < clearance) return false;
