@@ -17,7 +17,7 @@ from . import _meander
 JOBS = ("curve", "wire", "duotone")
 # Defaults for the number of a "number or name" parameter once its box is ticked; lengths
 # in metres (converted to the scene's units), the branches slider as a fraction.
-FIRST_VALUES = {"model_size": 0.1, "spacing": 0.05, "radius": 0.005, "branches": 0.5}
+FIRST_VALUES = {"model_size": 0.1, "spacing": 0.05, "radius": 0.005, "branches": 0.5, "bridges": 0.2}
 
 
 def _metres(context) -> float:

@@ -114,6 +114,15 @@ def run(meander):
         check(bpy.data.objects[source["meander_wire"]] == wire and len(wire.data.polygons) != faces,
               "the wire was not updated with 5 sides")
         check_closed_manifold(wire)
+        # Bridges: the wire becomes one solid with handles (a free loop's Euler characteristic is 0).
+        select(source)
+        scene.meander_wire.use_bridges = True
+        scene.meander_wire.bridges = 1.0
+        check(bpy.ops.meander.wire() == {"FINISHED"}, "meander.wire with bridges did not finish")
+        check_closed_manifold(wire)
+        euler = len(wire.data.vertices) - len(wire.data.edges) + len(wire.data.polygons)
+        check(euler < 0, f"the bridged wire's Euler characteristic is {euler}, not below 0")
+        scene.meander_wire.use_bridges = False
 
         select(source)
         scene.meander_duotone.texture_size = 256
