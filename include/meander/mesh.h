@@ -105,4 +105,7 @@ struct Polylines {
   }
 };
 
+// The curves' total length, a closed curve's closing segment included. O(points).
+double total_length(const Polylines& curves);
+
 } // namespace meander

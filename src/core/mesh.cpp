@@ -74,4 +74,13 @@ std::vector<Vec3> vertex_normals(const PolygonMesh& mesh) {
   return normals;
 }
 
+double total_length(const Polylines& curves) {
+  double length = 0;
+  for (int32_t k = 0; k < curves.size(); ++k) {
+    const std::span<const Vec3> line = curves.polyline(k);
+    for (size_t i = 0; i + (curves.closed(k) ? 0 : 1) < line.size(); ++i) length += norm(line[(i + 1) % line.size()] - line[i]);
+  }
+  return length;
+}
+
 } // namespace meander

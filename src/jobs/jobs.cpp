@@ -37,15 +37,6 @@ double covered_area(const QuadMesh& quads) {
   return area;
 }
 
-double total_length(const Polylines& curves) {
-  double length = 0;
-  for (int32_t k = 0; k < curves.size(); ++k) {
-    const std::span<const Vec3> line = curves.polyline(k);
-    for (size_t i = 0; i < line.size(); ++i) length += norm(to_double(line[(i + 1) % line.size()]) - to_double(line[i]));
-  }
-  return length;
-}
-
 // Per vertex of a wire with bridges fused in: 1 within `reach` of the creases where
 // they meet (vertices the union made, at neither's points), where the thickness and gap
 // rays would measure the crease's V.

@@ -102,17 +102,6 @@ std::string mode_name(StudioMode mode) {
   return "curve";
 }
 
-double total_length(const Polylines& curves) {
-  double length = 0;
-  for (size_t k = 0; k + 1 < curves.start.size(); ++k) {
-    const int32_t begin = curves.start[k], end = curves.start[k + 1];
-    for (int32_t i = begin; i + 1 < end; ++i) length += norm(curves.points[i + 1] - curves.points[i]);
-    const bool open = !curves.open.empty() && curves.open[k];
-    if (!open && end - begin > 1) length += norm(curves.points[begin] - curves.points[end - 1]);
-  }
-  return length;
-}
-
 } // namespace
 
 StudioMode parse_studio_mode(std::string_view name) {

@@ -222,15 +222,6 @@ double mesh_area(const PolygonMesh& m) {
   return area;
 }
 
-double curve_length(const Polylines& c) {
-  double length = 0;
-  for (int32_t k = 0; k < c.size(); ++k) {
-    const auto pts = c.polyline(k);
-    for (size_t i = 0; i + (c.closed(k) ? 0 : 1) < pts.size(); ++i) length += norm(pts[(i + 1) % pts.size()] - pts[i]);
-  }
-  return length;
-}
-
 void add_mesh(EmbreeScene& rtc, const SceneMesh& m, std::vector<GeometryInfo>& info) {
   GeometryInfo g{.albedo = linear(m.color), .style = m.style};
   const PolygonMesh& mesh = m.mesh;
@@ -459,7 +450,7 @@ Image render(const Scene& scene, const RenderOptions& o) {
 
   double area = 0, length = 0;
   for (const SceneMesh& m : scene.meshes) area += mesh_area(m.mesh);
-  for (const SceneCurves& k : scene.curves) length += curve_length(k.curves);
+  for (const SceneCurves& k : scene.curves) length += total_length(k.curves);
   // A curve that covers a surface passes at about area / length from its neighbours;
   // a curve that covers little of a large surface would get a tube as thick as a limb.
   const double radius = o.curve_width > 0 ? o.curve_width * pixel_size / 2
