@@ -17,7 +17,7 @@ DEBIAN_PACKAGES += pybind11-dev python3-dev python3-numpy python3-pytest
 # inkscape: they check that Inkscape reads a drawing's layers and paths.
 DEBIAN_PACKAGES += librsvg2-bin inkscape
 
-.PHONY: deps build install-python blender-addon demo test studio browser blender validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
+.PHONY: deps build install-python blender-addon demo test studio browser blender slicer validator bench gallery clean sanitize-config test-sanitize fuzz fuzz-corpus fuzz-check
 
 deps:
 	@missing=$$(for p in $(DEBIAN_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -59,7 +59,7 @@ demo: build
 # The suite in the Release build, the same suite again under the sanitizers (which also
 # builds the fuzz targets), then each fuzz target's seeds and a fixed number of inputs more.
 # Each phase's start is printed (UTC), so that a run's log shows where its time went.
-test: build validator browser blender
+test: build validator browser blender slicer
 	@echo "make test: $$(date -u +%T) the Release suite"
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@echo "make test: $$(date -u +%T) the sanitized build and suite"
@@ -148,6 +148,13 @@ blender:
 	@command -v blender > /dev/null || { echo "make test: installing Debian's blender for the add-on's test"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq blender \
 	  || echo "make test: blender could not be installed: the add-on's test will be skipped (failed under CI)"; }
+
+# Debian's PrusaSlicer: the tests open the two-colour prints with `prusa-slicer --info`
+# (skipped with a message where it could not be installed, failed under CI).
+slicer:
+	@command -v prusa-slicer > /dev/null || { echo "make test: installing Debian's prusa-slicer for the two-colour prints' test"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends prusa-slicer \
+	  || echo "make test: prusa-slicer could not be installed: its checks will be skipped (failed under CI)"; }
 
 # Debian's chromium for the studio's browser test (ctest studio_e2e, which skips with a
 # message where it could not be installed, and fails under CI).

@@ -371,6 +371,7 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
   set_parameters(job, params, "duotone");
   job.max_faces = max_faces;
   check_parameters(job);
+  if (job.shell) throw py::value_error("shell: duotone() paints the surface; a two-colour print is duotone_print()'s");
   PolygonMesh input = mesh.mesh;
   auto [repairs, notices, notes, surface, curves] = run_job(progress, [&](Progress& p) {
     RepairResult r = repair(std::move(input), mesh.name, {.strict = strict, .max_faces = max_faces});
@@ -390,6 +391,30 @@ py::tuple duotone(const Mesh& mesh, bool strict, int64_t max_faces, py::handle p
                         owned<float>(std::move(surface.appearance.texcoords), {corners, 2}),
                         owned<uint8_t>(std::move(texture.rgba), {py::ssize_t(texture.height), py::ssize_t(texture.width), 4}),
                         curves_list(std::move(curves)));
+}
+
+// A two-colour print, as `meander duotone --shell`: ([the two solids as Meshes], summary).
+py::tuple duotone_print(const Mesh& mesh, bool strict, int64_t max_faces, py::handle progress, const py::kwargs& params) {
+  DuotoneJob job;
+  set_parameters(job, params, "duotone");
+  job.max_faces = max_faces;
+  check_parameters(job);
+  if (!job.shell) throw py::value_error("shell: a two-colour print needs the wall's thickness (shell=...)");
+  PolygonMesh input = mesh.mesh;
+  auto [repairs, notices, notes, shell] = run_job(progress, [&](Progress& p) {
+    RepairResult r = repair(std::move(input), mesh.name, {.strict = strict, .max_faces = max_faces});
+    return about_mesh(mesh, [&] {
+      const Duotone d = make_duotone(r.mesh, r.connectivity, job, &p);
+      return std::tuple(std::move(r.repairs), std::move(r.notices), d.notes, make_shell(d, job));
+    });
+  });
+  warn_all(mesh.name, "repaired", repairs);
+  warn_all(mesh.name, "note", notices);
+  warn_all(mesh.name, "note", notes);
+  const std::string summary = shell_summary(shell, job);
+  py::list solids;
+  for (int k = 0; k < 2; ++k) solids.append(Mesh{std::move(shell.solids[size_t(k)]), mesh.name + " colour " + std::to_string(k + 1)});
+  return py::make_tuple(solids, summary);
 }
 
 // A length on the paper: millimetres, or text with its unit ("10mm", "0.5in"), as the CLI reads it.
@@ -662,6 +687,12 @@ PYBIND11_MODULE(_meander, m) {
         "uv (4F, 2) float32 per corner, texture (H, W, 4) uint8, separating curves).\n\n"
         "Parameters are the CLI's (`meander duotone --help`, meander.parameters('duotone')): quad, rule, tree, seed, colors, "
         "tiles, texture_size, subdivide, model_size, spacing.");
+  m.def("duotone_print", &duotone_print, "mesh"_a, py::kw_only(), "strict"_a = false, "max_faces"_a = 0,
+        "progress"_a = py::none(),
+        "A two-colour print, as `meander duotone --shell`: ([solid_1, solid_2] as Meshes, summary): the surface thickened "
+        "inward by `shell` and cut along the curve into two closed solids, one per colour; write them with write_print() "
+        "(one 3MF a slicer prints in two filaments) or write_mesh().\n\n"
+        "Parameters are duotone()'s, with shell (required) and min_thickness.");
   m.def("draw", &draw, "what"_a, py::kw_only(), "occluder"_a = py::none(), "view"_a = "iso", "fit"_a = false,
         "camera"_a = py::none(), "paper"_a = "A4", "landscape"_a = false, "margin"_a = 10.0, "pen"_a = 0.3, "progress"_a = py::none(),
         "A pen plotter's drawing, as `meander draw`: (paths, svg). `what` is a Mesh, whose curve is made with the curve's "
@@ -710,6 +741,18 @@ PYBIND11_MODULE(_meander, m) {
          bool millimetres) { write_textured_mesh(textured_from(vertices, faces, uv, texture), path, millimetres); },
       "path"_a, "vertices"_a, "faces"_a, "uv"_a, "texture"_a, py::kw_only(), "millimetres"_a = false,
       "Writes a duotone() surface: .obj (with its .mtl and .png beside it) or .glb");
+  m.def(
+      "write_print",
+      [](const std::filesystem::path& path, const Mesh& first, const Mesh& second, py::handle colors) {
+        DuotoneJob job;
+        py::kwargs given;
+        given["colors"] = colors;
+        set_parameters(job, given, "write_print");
+        write_3mf_parts(colored_parts(first.mesh, second.mesh, job.tiles.colors), path);
+      },
+      "path"_a, "first"_a, "second"_a, py::kw_only(), "colors"_a = "yellow,blue",
+      "Writes a two-colour print (.3mf): one object of two parts, each with its colour as a 3MF material and PrusaSlicer's "
+      "extruder (1 and 2): duotone_print()'s solids, in millimetres");
   m.def(
       "write_png",
       [](const std::filesystem::path& path, py::handle picture) {

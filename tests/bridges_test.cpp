@@ -191,6 +191,12 @@ TEST(Bridges, TheCliSaysWhereTheyAreAndCgalAgrees) {
   EXPECT_EQ(ribbon.exit_code, 2);
   EXPECT_NE(ribbon.err.find("bridges"), std::string::npos) << ribbon.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "ribbon.stl"));
+
+  MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
+  const test::SlicerInfo info = test::prusa_slicer_info(out);
+  ASSERT_EQ(info.status, 0) << info.text;
+  EXPECT_TRUE(info.manifold) << info.text;
+  EXPECT_EQ(info.parts, 1) << info.text; // one rigid piece
 }
 
 } // namespace

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <tuple>
 #include <numbers>
 #include <fcntl.h>
 #include <fstream>
@@ -65,6 +67,27 @@ std::string read_file(const std::filesystem::path& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+std::pair<int, std::string> run_program(const std::string& command) {
+  std::string out;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return {-1, ""};
+  char buffer[4096];
+  while (const size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  return {pclose(pipe), out};
+}
+
+bool prusa_slicer_found() { return run_program("command -v prusa-slicer").first == 0; }
+
+SlicerInfo prusa_slicer_info(const std::filesystem::path& file) {
+  SlicerInfo info;
+  std::tie(info.status, info.text) = run_program("prusa-slicer --info '" + file.string() + "'");
+  info.manifold = info.text.find("manifold = yes") != std::string::npos;
+  if (const size_t at = info.text.find("number_of_parts ="); at != std::string::npos)
+    info.parts = std::atoi(info.text.c_str() + at + std::strlen("number_of_parts ="));
+  for (size_t at = info.text.find("size_x"); at != std::string::npos; at = info.text.find("size_x", at + 1)) ++info.objects;
+  return info;
 }
 
 CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64_t> max_file_size) {

@@ -9,6 +9,7 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -73,6 +74,24 @@ struct CommandResult {
 // with SIGXFSZ at the write or reservation that would (RLIMIT_FSIZE), a kill at a point
 // that does not depend on timing.
 CommandResult run_cli(const std::vector<std::string>& args, std::optional<uint64_t> max_file_size = std::nullopt);
+
+// Runs a shell command line (another program: a slicer, a validator) and returns its exit
+// status (as pclose gives it) and what it printed on its standard output and error.
+std::pair<int, std::string> run_program(const std::string& command);
+
+// `prusa-slicer --info FILE` (Debian's prusa-slicer, which `make test` installs) as a
+// judge of a printable file: whether it says "manifold = yes" and the number of parts it
+// counts ("number_of_parts"), -1 if it printed none; MEANDER_REQUIRE it first
+// (prusa_slicer_found).
+bool prusa_slicer_found();
+struct SlicerInfo {
+  int status = -1;
+  bool manifold = false;
+  int parts = -1;
+  int objects = 0; // blocks of sizes it printed: one per object
+  std::string text;
+};
+SlicerInfo prusa_slicer_info(const std::filesystem::path& file);
 
 // A path of an SVG as Meander writes it ("M x y L x y ... [Z]"), read by the test's own
 // parser; `layer` counts the Inkscape layers before it, less one.

@@ -17,7 +17,7 @@ namespace meander::cli {
 namespace {
 
 struct DuotoneArgs {
-  std::string input, output, png, curve, regions;
+  std::string input, output, png, curve, regions, parts;
   DuotoneJob job;
   int64_t max_faces = 0;
   PictureArgs picture;
@@ -25,10 +25,10 @@ struct DuotoneArgs {
 };
 
 // "A.ply,B.ply" -> the two paths.
-std::array<std::string, 2> region_paths(const std::string& text) {
+std::array<std::string, 2> two_paths(const std::string& text, const char* option, const char* example) {
   const size_t comma = text.find(',');
   if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos || comma == 0 || comma + 1 == text.size())
-    throw UsageError("--regions '" + text + "': expected two files A.ply,B.ply (one per colour)");
+    throw UsageError(std::string(option) + " '" + text + "': expected two files " + example + " (one per colour)");
   return {text.substr(0, comma), text.substr(comma + 1)};
 }
 
@@ -40,11 +40,22 @@ void run_duotone(const DuotoneArgs& a) {
   DuotoneJob job = a.job;
   job.max_faces = a.max_faces;
   check_parameters(job);
-  require_output_path(a.output, {".obj", ".glb"}, "-o");
+  const bool print = lowercase_extension(a.output) == ".3mf";
+  require_output_path(a.output, {".obj", ".glb", ".3mf"}, "-o");
+  if (print && !job.shell)
+    throw UsageError("-o " + a.output + ": a .3mf is the two-colour print, a shell (add --shell, its wall's thickness)");
+  if (!a.parts.empty() && !job.shell) throw UsageError("--parts: the two solids are those of a shell (add --shell)");
+  if (job.shell && !print && a.parts.empty())
+    throw UsageError("--shell makes a two-colour print: write it with -o OUT.3mf or --parts A.stl,B.stl");
+  std::array<std::string, 2> parts;
+  if (!a.parts.empty()) {
+    parts = two_paths(a.parts, "--parts", "A.stl,B.stl");
+    for (const std::string& path : parts) require_output_path(path, {".stl", ".3mf", ".obj", ".ply", ".off", ".glb"}, "--parts");
+  }
   if (!a.curve.empty()) require_output_path(a.curve, {".obj", ".ply", ".json", ".svg"}, "--curve");
   std::array<std::string, 2> regions;
   if (!a.regions.empty()) {
-    regions = region_paths(a.regions);
+    regions = two_paths(a.regions, "--regions", "A.ply,B.ply");
     for (const std::string& path : regions) require_output_path(path, {".ply"}, "--regions");
   }
   if (!a.png.empty()) require_output_path(a.png, {".png"}, "--png");
@@ -70,9 +81,15 @@ void run_duotone(const DuotoneArgs& a) {
         return "use a coarser mesh";
       });
   StageTimes times;
-  const TexturedMesh surface = paint_duotone(duotone, job, {}, &times);
+  const bool painted = !print || !a.png.empty() || lowercase_extension(a.curve) == ".svg";
+  const TexturedMesh surface = painted ? paint_duotone(duotone, job, {}, &times) : TexturedMesh{};
   for (const auto& [stage, seconds] : times) log.add(stage, seconds);
   log.restart();
+  std::optional<SplitShell> shell;
+  if (job.shell) {
+    shell = about_input(a.input, [&] { return make_shell(duotone, job); });
+    log.lap("shell");
+  }
   // Everything is computed before the first file is written, so that a refusal leaves
   // no output behind.
   Polylines curves;
@@ -83,7 +100,10 @@ void run_duotone(const DuotoneArgs& a) {
   const std::string drawing = curve_drawing ? curve_svg(curves, surface.mesh, job.model_size.has_value()) : "";
   log.lap("curve, regions");
 
-  write_textured_mesh(surface, a.output, job.model_size.has_value());
+  if (print) write_3mf_parts(colored_parts(shell->solids[0], shell->solids[1], job.tiles.colors), a.output);
+  else write_textured_mesh(surface, a.output, job.model_size.has_value());
+  for (int k = 0; k < 2 && !a.parts.empty(); ++k)
+    write_mesh(shell->solids[size_t(k)], parts[size_t(k)], {.millimetres = job.model_size.has_value()});
   if (curve_drawing) write_bytes(a.curve, drawing);
   else if (!a.curve.empty()) write_polylines(curves, a.curve);
   for (int k = 0; k < 2 && !a.regions.empty(); ++k) write_mesh(pieces[size_t(k)], regions[size_t(k)]);
@@ -100,6 +120,7 @@ void run_duotone(const DuotoneArgs& a) {
                duotone.quadrangulation == Quadrangulation::catmull_clark ? "catmull-clark"
                : duotone.quadrangulation == Quadrangulation::dual_simplest ? "dual-simplest" : "as is",
                regions_text.c_str(), std::string(to_string(job.tiles.style)).c_str());
+  if (shell) std::fprintf(stderr, "%s\n", shell_summary(*shell, job).c_str());
   if (!a.png.empty()) log.note("wrote " + picture_written);
 }
 
@@ -109,10 +130,14 @@ Command add_duotone_command(CLI::App& parent) {
   auto args = std::make_shared<DuotoneArgs>();
   CLI::App* app = parent.add_subcommand("duotone", "Paint a surface in two colours: two connected regions separated by one curve per component (Truchet tiles)");
   app->add_option("IN", args->input, "input mesh (.obj .ply .stl .off .gltf .glb)")->required();
-  app->add_option("-o,--output", args->output, "textured surface: .obj (with .mtl and a .png texture beside it) or .glb")->required();
+  app->add_option("-o,--output", args->output,
+                  "textured surface: .obj (with .mtl and a .png texture beside it) or .glb; with --shell, .3mf: the "
+                  "two-colour print (two solids, one per extruder)")
+      ->required();
   add_parameters(*app, args->job);
   app->add_option("--curve", args->curve, "also write the separating curve(s) on the quad surface: .obj, .ply, .json, .svg");
   app->add_option("--regions", args->regions, "also write the two colour regions cut along the curve: A.ply,B.ply (binary)");
+  app->add_option("--parts", args->parts, "with --shell: write the two solids apart, A.stl,B.stl (any mesh format)");
   CLI::Option* png = app->add_option("--png", args->png, "also render the textured surface to this picture (.png)");
   add_picture_options(*app, args->picture, "the --png picture", png);
   add_max_faces(*app, args->max_faces);

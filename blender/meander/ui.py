@@ -17,7 +17,7 @@ from . import _meander
 JOBS = ("curve", "wire", "duotone")
 # Defaults for the number of a "number or name" parameter once its box is ticked; lengths
 # in metres (converted to the scene's units), the branches slider as a fraction.
-FIRST_VALUES = {"model_size": 0.1, "spacing": 0.05, "radius": 0.005, "branches": 0.5, "bridges": 0.2}
+FIRST_VALUES = {"model_size": 0.1, "spacing": 0.05, "radius": 0.005, "branches": 0.5, "bridges": 0.2, "shell": 0.002}
 
 
 def _metres(context) -> float:
@@ -129,10 +129,12 @@ class Job:
             raise InterruptedError("stopped")
 
     def run(self):
+        # A duotone with a shell is a two-colour print: its two solids.
+        function = "duotone_print" if self.arguments.get("shell") is not None else self.job
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", _meander.MeshWarning)
-                self.result = getattr(_meander, self.job)(self.mesh, progress=self._progress, **self.arguments)
+                self.result = getattr(_meander, function)(self.mesh, progress=self._progress, **self.arguments)
             self.warnings = [str(w.message) for w in caught]
         except (ValueError, TypeError, OSError, RuntimeError, InterruptedError) as error:
             self.error = error
@@ -167,6 +169,18 @@ def _mesh_data(name, vertices, faces):
     data.polygons.foreach_set("use_smooth", np.ones(len(faces), dtype=bool))
     data.update()
     return data
+
+
+def _colour_material(name, colour):
+    """A plain material of an "#rrggbb" colour."""
+    material = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    rgba = tuple(int(colour[k:k + 2], 16) / 255 for k in (1, 3, 5)) + (1.0,)
+    material.diffuse_color = rgba
+    material.use_nodes = True
+    shader = material.node_tree.nodes.get("Principled BSDF")
+    if shader is not None:
+        shader.inputs["Base Color"].default_value = rgba
+    return material
 
 
 def _duotone_material(name, texture):
@@ -220,6 +234,18 @@ def place_result(context, source, job, mesh, arguments, result):
         vertices, faces, report = result
         data = _mesh_data(name, vertices * scale, faces)
         points = vertices * scale
+    elif arguments.get("shell") is not None:
+        # A two-colour print: the first solid is the result object, the second its own
+        # object beside it ("... duotone 2"), each in its colour.
+        solids, _ = result
+        parts = []
+        for k, solid in enumerate(solids):
+            data = _mesh_data(f"{name} {k + 1}", solid.vertices * scale, solid.faces)
+            data.materials.append(_colour_material(f"{name} {k + 1}", arguments["colors"][k]))
+            parts.append(data)
+        points = np.concatenate([solid.vertices for solid in solids]) * scale
+        second = _result_object(context, source, "duotone 2", parts[1])
+        data = parts[0]
     else:
         vertices, faces, uv, texture, _ = result
         data = _mesh_data(name, vertices * scale, faces)
@@ -233,6 +259,8 @@ def place_result(context, source, job, mesh, arguments, result):
         obj.location = (sum(source_box) - points.min(axis=0) - points.max(axis=0)) / 2
     else:
         obj.location = (0, 0, 0)
+    if job == "duotone" and arguments.get("shell") is not None:
+        second.location = obj.location
     return obj
 
 
@@ -272,6 +300,8 @@ class _Make:
                         str(run.error) if not isinstance(run.error, InterruptedError) else "Meander: stopped")
             return {"CANCELLED"}
         obj = place_result(context, self.source, self.job, self.mesh, run.arguments, run.result)
+        if self.job == "duotone" and run.arguments.get("shell") is not None:
+            self.report({"INFO"}, f"Meander: {obj.name}: " + run.result[1])
         if self.job == "wire":
             # The printability report, as `meander wire --report` writes it, on the object.
             report = run.result[2]

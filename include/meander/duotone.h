@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,5 +143,20 @@ Polylines separating_curves(const Duotone& duotone, TileStyle style);
 // segments, plus the surface's own boundary edges, all yellow, each in two halves at its
 // midpoint (where the fan of its half quad's band starts). O(quads).
 std::array<PolygonMesh, 2> duotone_regions(const Duotone& duotone, TileStyle style);
+
+// Where the faces and vertices of the regions come from: each face's quad, and each
+// vertex's point of the quads (a corner: its index; a side's midpoint, a point inside a
+// quad: numbers after those), the same number in both regions where they share a point.
+struct RegionOrigins {
+  std::array<std::vector<int32_t>, 2> face_quad;
+  std::array<std::vector<int64_t>, 2> vertex_point;
+};
+
+// The same with the quads' corners at `at` (one place per vertex of duotone.quads): the
+// same vertices and faces, each mapped from the quad halves either side of its corner
+// 0-2 fold to the moved ones (the inside of a shell, shell.h), and with `origins`, where
+// they come from. Throws std::invalid_argument unless `at` has a place per vertex.
+std::array<PolygonMesh, 2> duotone_regions(const Duotone& duotone, TileStyle style, std::span<const Vec3> at,
+                                           RegionOrigins* origins = nullptr);
 
 } // namespace meander

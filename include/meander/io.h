@@ -18,6 +18,8 @@
 #include "meander/image.h"
 #include "meander/mesh.h"
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -98,6 +100,28 @@ void write_mesh(const PolygonMesh& mesh, const std::filesystem::path& path, cons
 // memory, for a caller that sends them on rather than to disk (the studio's downloads).
 // Throws what write_mesh throws but IOError.
 std::string mesh_file_bytes(const PolygonMesh& mesh, const std::filesystem::path& name, const MeshWriteOptions& options = {});
+
+// One part of a print in several filaments: a closed solid, its name and its colour
+// (sRGB).
+struct ColoredPart {
+  const PolygonMesh& mesh;
+  std::string name;
+  std::array<uint8_t, 3> color;
+};
+
+// Writes a 3MF (.3mf, else UsageError) that a slicer opens as one object printed in as
+// many filaments as there are parts: one mesh object holding the parts' triangles (fanned
+// as write_mesh fans them) part after part, in one build item, unit millimetre; each
+// triangle with its part's base material (the 3MF materials extension: a group of one
+// material per part, named and coloured as given), and PrusaSlicer's own model
+// configuration (Metadata/Slic3r_PE_model.config): the object's parts as volumes,
+// part k printed by extruder k + 1. PrusaSlicer ignores 3MF materials and drops each
+// object of a 3MF onto its bed on its own, which would take the pieces apart (measured
+// with PrusaSlicer 2.5: docs/printing.md). Atomic: no partial file is left.
+void write_3mf_parts(std::span<const ColoredPart> parts, const std::filesystem::path& path);
+
+// The bytes write_3mf_parts would write, in memory.
+std::string parts_3mf_bytes(std::span<const ColoredPart> parts, const std::filesystem::path& name);
 
 // Writes polylines, format by extension:
 //  .obj  v lines and one `l` element per polyline (a closed one repeats its first index

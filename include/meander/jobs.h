@@ -9,9 +9,11 @@
 #include "meander/bridges.h"
 #include "meander/drawing.h"
 #include "meander/duotone.h"
+#include "meander/io.h"
 #include "meander/pipeline.h"
 #include "meander/printability.h"
 #include "meander/render.h"
+#include "meander/shell.h"
 #include "meander/tone_mesh.h"
 #include "meander/wire.h"
 
@@ -99,6 +101,10 @@ struct DuotoneJob {
   DuotoneOptions duotone;
   TileOptions tiles;
   int subdivide = 0; // Catmull-Clark levels of the painted surface
+  // Set: a two-colour print, the surface thickened by this wall and cut along the curve
+  // (make_shell), judged against min_thickness (with a model size 0.8 mm unless set).
+  std::optional<double> shell;
+  double min_thickness = 0;
 };
 
 // make_duotone(mesh, connectivity, job.duotone), on the remeshed surface with job.spacing
@@ -121,6 +127,20 @@ Duotone make_duotone(const EvenSurface& even, const DuotoneJob& job, Progress* p
 // as make_wire's.
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas = {},
                            StageTimes* times = nullptr, Progress* progress = nullptr);
+
+// The two-colour print of a duotone make_duotone(mesh, connectivity, job) made, with
+// job.shell set: duotone_shell (shell.h) with the job's tiles. Throws UsageError without
+// job.shell, and what duotone_shell throws.
+SplitShell make_shell(const Duotone& duotone, const DuotoneJob& job);
+
+// One paragraph for people (no trailing newline): the solids' triangles and volumes, the
+// wall, and where it is thinner than asked or than the floor.
+std::string shell_summary(const SplitShell& shell, const DuotoneJob& job);
+
+// Two solids as the parts of a print (write_3mf_parts, io.h) in these colours, named
+// "colour 1 (#rrggbb)" and "colour 2 (...)".
+std::array<ColoredPart, 2> colored_parts(const PolygonMesh& first, const PolygonMesh& second,
+                                         const std::array<Color8, 2>& colors);
 
 // The one SVG of curves, what `meander curve -o OUT.svg`, `duotone --curve OUT.svg`, the
 // studio's curve.svg and meander.write_curves write: the plotter drawing (drawing.h)

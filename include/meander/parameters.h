@@ -84,6 +84,7 @@ inline constexpr std::string_view branches_choices[] = {"none"};
 inline constexpr std::string_view duotone_quad_choices[] = {"catmull-clark", "dual-simplest", "none"};
 inline constexpr std::string_view rule_choices[] = {"tree", "flip"};
 inline constexpr std::string_view tiles_choices[] = {"truchet", "outline", "triangles", "stripes", "dots"};
+inline constexpr std::string_view shell_choices[] = {"none"};
 
 inline constexpr Parameter quad{.name = "quad", .help = "quadrangulation", .choices = quad_choices};
 inline constexpr Parameter tree{.name = "tree",
@@ -191,6 +192,18 @@ inline constexpr Parameter subdivide{.name = "subdivide",
                                              "texture coordinates carried along)",
                                      .min = 0,
                                      .max = 5};
+inline constexpr Parameter shell{.name = "shell",
+                                 .help = "a two-colour print: the surface thickened inward by this wall (in mesh units; "
+                                         "millimetres with a model size) and cut along the curve into two solids, one "
+                                         "per colour (-o OUT.3mf, --parts A.stl,B.stl; none: the painted surface)",
+                                 .choices = shell_choices,
+                                 .length = true};
+inline constexpr Parameter shell_min_thickness{.name = "min_thickness",
+                                               .help = "with --shell: the thinnest wall the printer makes, in mesh "
+                                                       "units (millimetres with a model size, where it is 0.8 unless "
+                                                       "given); where the model is too thin for it the report says so",
+                                               .min = 0,
+                                               .length = true};
 
 // `meander image`: every length in millimetres on the sheet.
 inline constexpr std::string_view width_choices[] = {"none"};
@@ -295,6 +308,8 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::tiles, job.tiles.style);
     visit(parameters::texture_size, job.tiles.texture_size);
     visit(parameters::subdivide, job.subdivide);
+    visit(parameters::shell, job.shell);
+    visit(parameters::shell_min_thickness, job.min_thickness);
   }
 }
 

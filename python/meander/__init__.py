@@ -28,6 +28,7 @@ from ._meander import (
     curve,
     draw,
     duotone,
+    duotone_print,
     generate,
     image,
     parameters,
@@ -39,6 +40,7 @@ from ._meander import (
     write_duotone,
     write_mesh,
     write_png,
+    write_print,
 )
 from ._meander import _hold_next_job  # for the tests
 
@@ -49,6 +51,7 @@ __all__ = [
     "curve",
     "draw",
     "duotone",
+    "duotone_print",
     "generate",
     "image",
     "parameters",
@@ -60,6 +63,7 @@ __all__ = [
     "write_duotone",
     "write_mesh",
     "write_png",
+    "write_print",
 ]
 
 

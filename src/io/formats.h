@@ -47,6 +47,7 @@ void write_off(const PolygonMesh& mesh, Sink& out);
 // `name` stands for the file in lib3mf's error messages. Coordinates are rounded to 6
 // decimals (lib3mf's format: a micrometre, the unit being the millimetre).
 void write_3mf(const PolygonMesh& mesh, std::string_view name, Sink& out);
+void write_3mf_parts(std::span<const ColoredPart> parts, std::string_view name, Sink& out);
 
 // "x y z\n": a point as OBJ, OFF and ascii PLY write it.
 inline void write_point_line(Sink& out, Vec3 p) {

@@ -168,6 +168,20 @@ std::string mesh_file_bytes(const PolygonMesh& mesh, const std::filesystem::path
   return out.take();
 }
 
+void write_3mf_parts(std::span<const ColoredPart> parts, const std::filesystem::path& path) {
+  if (mesh_format_from_path(path) != MeshFormat::threemf)
+    throw UsageError(path.string() + ": a print in several filaments is written as .3mf");
+  io::AtomicFile out(path);
+  io::write_3mf_parts(parts, path.string(), out);
+  out.commit();
+}
+
+std::string parts_3mf_bytes(std::span<const ColoredPart> parts, const std::filesystem::path& name) {
+  io::MemorySink out;
+  io::write_3mf_parts(parts, name.string(), out);
+  return out.take();
+}
+
 void write_bytes(const std::filesystem::path& path, std::string_view bytes) {
   io::AtomicFile out(path);
   out.bytes(bytes.data(), bytes.size());

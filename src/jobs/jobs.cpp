@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 #include <tuple>
 
 namespace meander {
@@ -203,6 +205,44 @@ Duotone make_duotone(const EvenSurface& even, const DuotoneJob& job, Progress* p
     throw UsageError("make_duotone: the even surface was made for another spacing, model size, quadrangulation or face limit");
   if (progress) progress->begin("duotone");
   return make_duotone(even.even, build_connectivity(even.even), job.duotone);
+}
+
+SplitShell make_shell(const Duotone& duotone, const DuotoneJob& job) {
+  if (!job.shell) throw UsageError("make_shell: the job has no shell (its wall's thickness)");
+  // Two nozzles of 0.4 mm, as a wire's floor (WireJob::nozzle).
+  const double floor = job.min_thickness > 0 ? job.min_thickness : job.model_size ? 0.8 : 0;
+  return duotone_shell(duotone, job.tiles.style, {.thickness = *job.shell, .min_thickness = floor});
+}
+
+std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
+  const auto number = [](double x) {
+    std::ostringstream out;
+    out << std::setprecision(6) << x;
+    return out.str();
+  };
+  const auto at = [&](Vec3 p) { return "(" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")"; };
+  std::string text = "2 solids, one per colour, closed and outward: " + std::to_string(shell.solids[0].num_faces()) + " and " +
+                     std::to_string(shell.solids[1].num_faces()) + " triangles, volumes " + number(shell.volumes[0]) + " and " +
+                     number(shell.volumes[1]) + "; a wall of " + number(*job.shell);
+  if (shell.reduced_corners == 0) return text + " everywhere.";
+  text += ", thinner at " + std::to_string(shell.reduced_corners) +
+          " quad corners (the model is thinner than two walls there, or bends sharply), down to " + number(shell.thinnest) +
+          " at " + at(shell.thinnest_at);
+  if (shell.below_floor_corners > 0)
+    text += "; thinner than the " + number(job.min_thickness > 0 ? job.min_thickness : 0.8) + " a printer makes at " +
+            std::to_string(shell.below_floor_corners) + " of them: not printable there";
+  return text + ".";
+}
+
+std::array<ColoredPart, 2> colored_parts(const PolygonMesh& first, const PolygonMesh& second,
+                                         const std::array<Color8, 2>& colors) {
+  const auto name = [&](int k) {
+    const Color8 c = colors[size_t(k)];
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", c[0], c[1], c[2]);
+    return "colour " + std::to_string(k + 1) + " (" + hex + ")";
+  };
+  return {ColoredPart{first, name(0), colors[0]}, ColoredPart{second, name(1), colors[1]}};
 }
 
 TexturedMesh paint_duotone(const Duotone& duotone, const DuotoneJob& job, const Texture& atlas, StageTimes* times,

@@ -205,7 +205,11 @@ void check_parameters(const WireJob& job) {
                                                        ? " apply to wires: a ribbon lies on the surface, which holds it"
                                                        : " are made for the constant wire only so far (--method constant)");
 }
-void check_parameters(const DuotoneJob& job) { check_numbers(job); }
+void check_parameters(const DuotoneJob& job) {
+  check_numbers(job);
+  if (job.min_thickness > 0 && !job.shell)
+    throw ParameterError(parameters::shell_min_thickness.name, " applies to a shell (--shell): the painted surface has no thickness");
+}
 void check_parameters(const ImageJob& job) {
   check_numbers(job);
   if (job.tone.max_spacing < job.tone.spacing)

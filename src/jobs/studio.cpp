@@ -122,10 +122,12 @@ template <class T> std::string json_text(const json& value) {
   return value.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-// Parameters no studio request sets: the mode sets the wire's method and shape, and a
-// picture's size was checked when it was uploaded.
+// Parameters no studio request sets: the mode sets the wire's method and shape, a
+// picture's size was checked when it was uploaded, and the studio makes no two-colour
+// print (a duotone's shell and its floor; the wire's min_thickness is the wire's).
 bool set_by_the_studio(const Parameter& parameter) {
-  return &parameter == &parameters::method || &parameter == &parameters::shape || &parameter == &parameters::max_pixels;
+  return &parameter == &parameters::method || &parameter == &parameters::shape || &parameter == &parameters::max_pixels ||
+         &parameter == &parameters::shell || &parameter == &parameters::shell_min_thickness;
 }
 
 // Sets the parameter `key` of the mode's job from `value`; false if no mode's job has it.

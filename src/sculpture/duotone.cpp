@@ -316,11 +316,12 @@ std::vector<LocalPoint> corner_curve(TileStyle style, int a) {
   return out;
 }
 
-// Where the surface of quad q is at square point (s, t).
-Vec3 surface_point(const QuadMesh& m, int32_t q, double s, double t) {
+// Where the surface of quad q, its corners at `at`, is at square point (s, t): on its
+// two halves either side of the corner 0-2 fold, each flat.
+Vec3 surface_point(const QuadMesh& m, std::span<const Vec3> at, int32_t q, double s, double t) {
   const auto& c = m.quads[size_t(q)];
   auto p = [&](int k) {
-    const Vec3 v = m.positions[size_t(c[size_t(k)])];
+    const Vec3 v = at[size_t(c[size_t(k)])];
     return std::array<double, 3>{v.x, v.y, v.z};
   };
   const auto p0 = p(0), p2 = p(2), p3 = p(3);
@@ -334,15 +335,17 @@ Vec3 surface_point(const QuadMesh& m, int32_t q, double s, double t) {
   return {float(x[0]), float(x[1]), float(x[2])};
 }
 
+Vec3 surface_point(const QuadMesh& m, int32_t q, double s, double t) { return surface_point(m, m.positions, q, s, t); }
+
 // The midpoint of two points, the same float whichever comes first (the sum is exact
 // in double and commutes), so that both quads on a side get the same point.
 Vec3 midpoint(Vec3 a, Vec3 b) {
   return {float(0.5 * (double(a.x) + b.x)), float(0.5 * (double(a.y) + b.y)), float(0.5 * (double(a.z) + b.z))};
 }
 
-Vec3 side_midpoint(const QuadMesh& m, int32_t q, int k) {
+Vec3 side_midpoint(const QuadMesh& m, std::span<const Vec3> at, int32_t q, int k) {
   const auto& c = m.quads[size_t(q)];
-  return midpoint(m.positions[size_t(c[size_t(k)])], m.positions[size_t(c[size_t((k + 1) & 3)])]);
+  return midpoint(at[size_t(c[size_t(k)])], at[size_t(c[size_t((k + 1) & 3)])]);
 }
 
 // One name per quad side, shared by the two quads on it.
@@ -441,7 +444,7 @@ Polylines separating_curves(const Duotone& d, TileStyle style) {
       const int32_t q = d.cycle.order[size_t(i)] >> 2;
       const int a = d.cycle.order[size_t(i)] & 3;
       const bool forward = side_key(m, q, (a + 3) & 3) == entry;
-      out.points.push_back(side_midpoint(m, q, forward ? (a + 3) & 3 : a));
+      out.points.push_back(side_midpoint(m, m.positions, q, forward ? (a + 3) & 3 : a));
       const auto& points = curve[size_t(a)];
       for (size_t j = 0; j < points.size(); ++j) {
         const LocalPoint& p = points[forward ? j : points.size() - 1 - j];
@@ -454,8 +457,14 @@ Polylines separating_curves(const Duotone& d, TileStyle style) {
   return out;
 }
 
-std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
+std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) { return duotone_regions(d, style, d.quads.positions); }
+
+std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style, std::span<const Vec3> at,
+                                           RegionOrigins* origins) {
   const QuadMesh& m = d.quads;
+  if (at.size() != m.positions.size())
+    throw std::invalid_argument("duotone_regions: " + std::to_string(at.size()) + " corners for a duotone of " +
+                                std::to_string(m.positions.size()));
   std::array<std::vector<LocalPoint>, 4> curve;
   for (int a = 0; a < 4; ++a) curve[size_t(a)] = corner_curve(style, a);
   std::array<PolygonMesh, 2> out;
@@ -496,11 +505,16 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
                               : nullptr;
       if (shared && *shared >= 0) return id = *shared;
       id = out[size_t(r)].num_vertices();
+      // A quad has at most 8 + 2 * 7 + 1 points (corners, midpoints, two arcs, centre).
+      if (origins)
+        origins->vertex_point[size_t(r)].push_back(p < 4   ? int64_t(c[size_t(p)])
+                                                   : p < 8 ? int64_t(m.positions.size()) + side_key(m, q, p - 4)
+                                                           : int64_t(m.positions.size()) + 4 * int64_t(m.num_quads()) + 32 * int64_t(q) + p);
       // A half quad's centre halves its boundary edge.
-      out[size_t(r)].positions.push_back(p < 4                      ? m.positions[size_t(c[size_t(p)])]
-                                         : p < 8                    ? side_midpoint(m, q, p - 4)
-                                         : p == centre && m.is_half(q) ? midpoint(m.positions[size_t(c[0])], m.positions[size_t(c[2])])
-                                                                    : surface_point(m, q, pts[size_t(p)].s, pts[size_t(p)].t));
+      out[size_t(r)].positions.push_back(p < 4                      ? at[size_t(c[size_t(p)])]
+                                         : p < 8                    ? side_midpoint(m, at, q, p - 4)
+                                         : p == centre && m.is_half(q) ? midpoint(at[size_t(c[0])], at[size_t(c[2])])
+                                                                    : surface_point(m, at, q, pts[size_t(p)].s, pts[size_t(p)].t));
       if (shared) *shared = id;
       return id;
     };
@@ -527,7 +541,10 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) {
         }
         const size_t n = half.size();
         if (n < 3) continue;
-        auto face = [&](int a, int b, int cc) { out[size_t(r)].add_face({vertex(r, a), vertex(r, b), vertex(r, cc)}); };
+        auto face = [&](int a, int b, int cc) {
+          out[size_t(r)].add_face({vertex(r, a), vertex(r, b), vertex(r, cc)});
+          if (origins) origins->face_quad[size_t(r)].push_back(q);
+        };
         if (!band) {
           for (size_t i = 1; i + 1 < n; ++i) face(half[0], half[i], half[i + 1]);
           continue;

@@ -142,6 +142,21 @@ def run(meander):
         check(np.abs(np.flipud(pixels.reshape(image.size[1], image.size[0], 4)) * 255 - texture).max() < 1,
               "the image is not the duotone's texture, top row first")
 
+        # A two-colour print: the duotone's two solids, each closed, in its colour (of the
+        # torus: Spot's control mesh crosses itself, which a shell refuses).
+        if source != torus:
+            continue
+        select(source)
+        scene.meander_duotone.use_shell = True
+        scene.meander_duotone.shell = 0.02
+        check(bpy.ops.meander.duotone() == {"FINISHED"}, "meander.duotone with a shell did not finish")
+        first, second = bpy.data.objects[source["meander_duotone"]], bpy.data.objects[source["meander_duotone 2"]]
+        for solid in (first, second):
+            check_closed_manifold(solid)
+        colour = tuple(first.data.materials[0].diffuse_color)[:3]
+        check(np.allclose(colour, scene.meander_duotone.colors_1, atol=1 / 255), f"the first solid's colour is {colour}")
+        scene.meander_duotone.use_shell = False
+
     # The scene's units: with 1 unit = 1 mm, a model size of 100 mm is 100 units wide.
     select(torus)
     scene.unit_settings.scale_length = 0.001

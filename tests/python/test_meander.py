@@ -182,6 +182,27 @@ def test_a_bridged_wire_is_the_command_lines_one_piece(shared, cli, tmp_path):
     assert report["self_intersecting"] is False and report["watertight"] is True
 
 
+def test_a_two_colour_print_is_the_command_lines(shared, cli, tmp_path):
+    source = shared / "eight.off"
+    args = dict(model_size="100mm", spacing="3mm", shell="1.5mm", colors="red,navy")
+    subprocess.run([cli, "duotone", str(source), "-o", str(tmp_path / "cli.3mf"), "--parts",
+                    f"{tmp_path / 'a.ply'},{tmp_path / 'b.ply'}"] + [x for k, v in args.items()
+                                                                     for x in ("--" + k.replace("_", "-"), v)],
+                   check=True, capture_output=True)
+    (first, second), summary = meander.duotone_print(meander.read(source), **args)
+    assert summary.startswith("2 solids, one per colour, closed and outward")
+    for solid, name in [(first, "a.ply"), (second, "b.ply")]:
+        written = meander.read(tmp_path / name)
+        np.testing.assert_array_equal(solid.vertices, written.vertices)
+        np.testing.assert_array_equal(solid.faces, written.faces)
+    meander.write_print(tmp_path / "python.3mf", first, second, colors=["red", "navy"])
+    assert (tmp_path / "python.3mf").read_bytes() == (tmp_path / "cli.3mf").read_bytes()
+    with pytest.raises(ValueError, match="duotone_print"):
+        meander.duotone(meander.read(source), shell=1)
+    with pytest.raises(ValueError, match="shell"):
+        meander.duotone_print(meander.read(source))
+
+
 def test_a_duotone_has_its_texture_and_coordinates_and_its_curve(sphere, tmp_path):
     vertices, faces, uv, texture, curves = meander.duotone(sphere, texture_size=256, colors=["#ff0000", "#102030"], subdivide=1)
     assert faces.shape[1] == 4 and faces.max() < len(vertices)

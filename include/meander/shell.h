@@ -1,0 +1,55 @@
+// A surface painted in two regions, printed in two colours (issue 38; the paper's Section
+// 6: "cutting the surface into two 2-manifolds with boundaries ... turned to solid
+// shapes"): the surface thickened into a shell and cut along the regions' common boundary,
+// straight through the wall, into two solids, one per region.
+#pragma once
+
+#include "meander/duotone.h"
+
+#include <array>
+#include <cstdint>
+
+namespace meander {
+
+struct ShellOptions {
+  double thickness = 0; // the wall, > 0, in mesh units
+  // The thinnest wall the printer makes: where the wall must be thinner (the model is
+  // thinner than two walls there), the result says so. 0: no floor.
+  double min_thickness = 0;
+};
+
+struct SplitShell {
+  // solids[k] is colour region k thickened: the region itself (its outside), the region
+  // moved inward (its inside), and a wall along each of its boundary edges joining the
+  // two. Each is closed and outward; they meet along the walls at the regions' common
+  // boundary (the same triangles, opposite ways round) and overlap nowhere, so together
+  // they are the shell.
+  std::array<PolygonMesh, 2> solids;
+  std::array<double, 2> volumes{}; // of the solids (the divergence theorem), positive
+  // Where the wall is thinner than asked (the model is thinner than two walls there, or
+  // it bends too sharply for the inside to follow), counted in the quads' corners.
+  int32_t reduced_corners = 0;
+  int32_t below_floor_corners = 0; // thinner than ShellOptions::min_thickness
+  double thinnest = 0;             // the thinnest wall, at a corner
+  Vec3 thinnest_at;                // that corner
+};
+
+// The duotone's surface thickened into a shell and cut along its separating curves
+// (duotone_regions with `style`: the tiles' curves), straight through the wall. A closed
+// component is thickened inward, an open one to the side its quads' normals turn away
+// from (its surface boundary walled like the cut). Each corner of the quads moves in
+// along its normal until it lies the thickness from the surface (or, in a part thinner
+// than two walls, 0.45 of the way across), then onto the points that lie that far from
+// the surface (near a sharp bend, away from its other side); corners of quads whose
+// inside would fold over or cross itself or the outside are drawn back. The tiles inside
+// each quad half move with its corners, so that no sliver of a tile turns over.
+// Deterministic. Throws ParameterError for a thickness that is not a positive number or
+// is below min_thickness; TopologyError, naming a place, for a non-orientable surface (it
+// has no inside: a Möbius band), one that crosses or touches itself, or one whose inside
+// still crosses itself (a surface that folds more sharply than its quads let the inside
+// follow, or is too thin: the crumpled ears of a coarse remesh). O(n log n) for n
+// triangles of the regions, plus the self-intersection searches (printability.h) of the
+// surface, each solid and the whole shell.
+SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options);
+
+} // namespace meander
