@@ -207,11 +207,17 @@ Duotone make_duotone(const EvenSurface& even, const DuotoneJob& job, Progress* p
   return make_duotone(even.even, build_connectivity(even.even), job.duotone);
 }
 
+namespace {
+
+// The thinnest wall a shell may have: as given, or in millimetres two nozzles of 0.4 mm
+// (a wire's floor, WireJob::nozzle).
+double shell_floor(const DuotoneJob& job) { return job.min_thickness > 0 ? job.min_thickness : job.model_size ? 0.8 : 0; }
+
+} // namespace
+
 SplitShell make_shell(const Duotone& duotone, const DuotoneJob& job) {
   if (!job.shell) throw UsageError("make_shell: the job has no shell (its wall's thickness)");
-  // Two nozzles of 0.4 mm, as a wire's floor (WireJob::nozzle).
-  const double floor = job.min_thickness > 0 ? job.min_thickness : job.model_size ? 0.8 : 0;
-  return duotone_shell(duotone, job.tiles.style, {.thickness = *job.shell, .min_thickness = floor});
+  return duotone_shell(duotone, job.tiles.style, {.thickness = *job.shell, .min_thickness = shell_floor(job)});
 }
 
 std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
@@ -229,7 +235,7 @@ std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
           " quad corners (the model is thinner than two walls there, or bends sharply), down to " + number(shell.thinnest) +
           " at " + at(shell.thinnest_at);
   if (shell.below_floor_corners > 0)
-    text += "; thinner than the " + number(job.min_thickness > 0 ? job.min_thickness : 0.8) + " a printer makes at " +
+    text += "; thinner than the " + number(shell_floor(job)) + " a printer makes at " +
             std::to_string(shell.below_floor_corners) + " of them: not printable there";
   return text + ".";
 }
