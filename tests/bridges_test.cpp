@@ -150,6 +150,22 @@ TEST(Bridges, MakeTheWireOneRigidSolid) {
   }
 }
 
+// Where a strut meets the tube at a small angle, the union's crossing points, rounded
+// to floats, turned thin triangles over into their neighbours: the demo pretzel at 1,600
+// faces, 2 samples a segment and bridges every 0.5 crossed itself at two places.
+TEST(Bridges, ManyBridgesStayClearOnceRoundedToFloats) {
+  const WireJob job{.curve = {.curve = {.samples = 2}}, .bridges = 0.5};
+  const CurveResult curve = make_curve(make_shape("pretzel", 1600), wire_curve_job(job));
+  const WireResult wire = make_wire(curve, job);
+  EXPECT_GT(wire.bridges.ends.size(), 500u);
+  EXPECT_FALSE(wire.report.self_intersecting);
+  const test::CgalVerdict cgal = test::cgal_judge(wire.mesh);
+  ASSERT_TRUE(cgal.loaded);
+  EXPECT_TRUE(cgal.closed);
+  EXPECT_FALSE(cgal.self_intersecting);
+  EXPECT_TRUE(cgal.outward);
+}
+
 TEST(Bridges, SameCurveSameWire) {
   const WireJob job{.curve = {.spacing = 0.2}, .bridges = 0.8};
   const CurveResult curve = make_curve(torus(1000), wire_curve_job(job));

@@ -74,7 +74,7 @@ void expect_two_solids(const Duotone& d, const SplitShell& shell, bool closed) {
     EXPECT_GT(v.volume, 0);
   }
   // They overlap nowhere: the union's volume is the sum (an overlap of 0.1% would show).
-  const PolygonMesh both = unite_solids(shell.solids[0], shell.solids[1]);
+  const PolygonMesh both = unite_solids(shell.solids[0], shell.solids[1]).mesh;
   const test::CgalVerdict u = test::cgal_judge(both);
   ASSERT_TRUE(u.loaded);
   EXPECT_TRUE(u.closed);

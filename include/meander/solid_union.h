@@ -3,17 +3,26 @@
 
 #include "meander/mesh.h"
 
+#include <cstdint>
 #include <string_view>
+#include <vector>
 
 namespace meander {
+
+struct SolidUnion {
+  PolygonMesh mesh;
+  std::vector<uint8_t> made; // per vertex: 1 where it is at no input vertex (where the surfaces cross)
+};
 
 // The boundary of the union of the solids that two closed, outward meshes bound (neither
 // intersecting itself; they may intersect each other), as triangles, by CGAL's
 // corefinement (Polygon Mesh Processing, exact predicates). Throws InputError when a
 // mesh is not closed, has a polygon of more than four corners or intersects itself,
 // naming it ("the wire intersects itself"), and TopologyError when CGAL cannot make the
-// union a manifold surface. Deterministic.
-PolygonMesh unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name = "first mesh",
-                         std::string_view second_name = "second mesh");
+// union a manifold surface. The points made in double are
+// rounded to floats; faces that rounding flattens or turns into their neighbours are
+// collapsed. Deterministic.
+SolidUnion unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name = "first mesh",
+                        std::string_view second_name = "second mesh");
 
 } // namespace meander

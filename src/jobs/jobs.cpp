@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
-#include <tuple>
 
 namespace meander {
 
@@ -40,23 +39,18 @@ double covered_area(const QuadMesh& quads) {
 }
 
 // Per vertex of a wire with bridges fused in: 1 within `reach` of the creases where
-// they meet (vertices the union made, at neither's points), where the thickness and gap
-// rays would measure the crease's V.
-std::vector<uint8_t> beside_creases(const PolygonMesh& united, const PolygonMesh& tube, const PolygonMesh& struts,
-                                    double reach) {
-  const auto less = [](Vec3 a, Vec3 b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
-  std::vector<Vec3> before = tube.positions;
-  before.insert(before.end(), struts.positions.begin(), struts.positions.end());
-  std::sort(before.begin(), before.end(), less);
+// they meet (the vertices the union made), where the thickness and gap rays would
+// measure the crease's V.
+std::vector<uint8_t> beside_creases(const SolidUnion& united, double reach) {
   std::vector<Vec3> crease;
-  for (const Vec3 p : united.positions)
-    if (!std::binary_search(before.begin(), before.end(), p, less)) crease.push_back(p);
-  std::vector<uint8_t> near(united.positions.size(), 0);
+  for (size_t v = 0; v < united.made.size(); ++v)
+    if (united.made[v]) crease.push_back(united.mesh.positions[v]);
+  std::vector<uint8_t> near(united.mesh.positions.size(), 0);
   if (crease.empty()) return near;
-  const PointGrid grid(crease, reach, bounding_box(united.positions));
+  const PointGrid grid(crease, reach, bounding_box(united.mesh.positions));
   for (size_t v = 0; v < near.size(); ++v)
-    grid.for_each_near(united.positions[v], [&](size_t rank) {
-      near[v] = norm(crease[size_t(grid.ids()[rank])] - united.positions[v]) <= reach;
+    grid.for_each_near(united.mesh.positions[v], [&](size_t rank) {
+      near[v] = norm(crease[size_t(grid.ids()[rank])] - united.mesh.positions[v]) <= reach;
       return !near[v];
     });
   return near;
@@ -119,15 +113,15 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
           centre, {.max_stretch = *job.bridges, .radius = made.radius, .reach = std::max(1.5 * spacing, 3 * made.radius)});
       if (!result.bridges.ends.empty()) { // none where no pass is near enough: the report says so
         const PolygonMesh struts = bridge_solids(centre, result.bridges, made.radius, job.sides);
-        PolygonMesh united;
+        SolidUnion united;
         try {
           united = unite_solids(result.mesh, struts, "wire", "bridges");
         } catch (const InputError& e) {
           throw TopologyError(std::string(e.what()) + " at radius " + parameter_text(parameters::radius, std::optional(made.radius)) +
                               ", so bridges cannot be fused into it: choose a smaller radius (auto: the largest clear one)");
         }
-        unmeasured = beside_creases(united, result.mesh, struts, 1.5 * made.radius);
-        result.mesh = std::move(united);
+        unmeasured = beside_creases(united, 1.5 * made.radius);
+        result.mesh = std::move(united.mesh);
       }
     }
   } else {

@@ -8,9 +8,12 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <array>
 #include <string>
 #include <string_view>
@@ -108,20 +111,83 @@ PolygonMesh in_order_of_positions(const PolygonMesh& mesh) {
   return result;
 }
 
+// Per vertex of `united`: 1 where it lies at no vertex of `first` or `second` (the union
+// made it where their surfaces cross).
+std::vector<uint8_t> made_by_union(const PolygonMesh& united, const PolygonMesh& first, const PolygonMesh& second) {
+  const auto less = [](Vec3 a, Vec3 b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::vector<Vec3> before = first.positions;
+  before.insert(before.end(), second.positions.begin(), second.positions.end());
+  std::sort(before.begin(), before.end(), less);
+  std::vector<uint8_t> made(united.positions.size());
+  for (size_t v = 0; v < made.size(); ++v) made[v] = !std::binary_search(before.begin(), before.end(), united.positions[v], less);
+  return made;
+}
+
+// The faces of `surface` within two rings of a vertex flagged in `made` (by index).
+std::vector<SurfaceMesh::Face_index> faces_near(const SurfaceMesh& surface, const std::vector<uint8_t>& made) {
+  std::vector<uint8_t> ring(surface.num_vertices() + surface.number_of_removed_vertices(), 0);
+  for (SurfaceMesh::Vertex_index v : surface.vertices()) ring[v.idx()] = made[v.idx()];
+  for (const uint8_t step : {uint8_t(1), uint8_t(2)}) // grow the flagged vertices by one ring, twice
+    for (SurfaceMesh::Vertex_index v : surface.vertices())
+      if (ring[v.idx()] == step)
+        for (SurfaceMesh::Vertex_index w : surface.vertices_around_target(surface.halfedge(v)))
+          if (!ring[w.idx()]) ring[w.idx()] = step + 1;
+  std::vector<SurfaceMesh::Face_index> near;
+  for (SurfaceMesh::Face_index f : surface.faces())
+    for (SurfaceMesh::Vertex_index v : surface.vertices_around_face(surface.halfedge(f)))
+      if (ring[v.idx()] == 1 || ring[v.idx()] == 2) {
+        near.push_back(f);
+        break;
+      }
+  return near;
+}
+
+// Rounded to floats, the thin triangles along the crossing of two surfaces that meet at
+// a small angle may turn over and cross their neighbours (a few a thousand bridges; the
+// corefinement in double crosses nothing): the shortest edge of each face found
+// crossing another there is collapsed into its end that came from the inputs (its
+// position is kept exactly), a few rounds while any are found.
+void uncross_rounded(SurfaceMesh& surface, const std::vector<uint8_t>& made) {
+  for (int round = 0; round < 8; ++round) {
+    std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> crossing;
+    PMP::self_intersections(faces_near(surface, made), surface, std::back_inserter(crossing));
+    if (crossing.empty()) return;
+    for (const auto& pair : crossing) {
+      if (surface.is_removed(pair.first) || surface.is_removed(pair.second)) continue;
+      SurfaceMesh::Halfedge_index shortest;
+      double length = INFINITY;
+      for (const SurfaceMesh::Face_index f : {pair.first, pair.second})
+        for (SurfaceMesh::Halfedge_index h : surface.halfedges_around_face(surface.halfedge(f)))
+          if (const double l = CGAL::squared_distance(surface.point(surface.source(h)), surface.point(surface.target(h)));
+              l < length && CGAL::Euler::does_satisfy_link_condition(surface.edge(h), surface))
+            length = l, shortest = h;
+      if (shortest == SurfaceMesh::null_halfedge()) continue;
+      const SurfaceMesh::Vertex_index from = surface.source(shortest), to = surface.target(shortest);
+      const Kernel::Point_3 kept = made[to.idx()] && !made[from.idx()] ? surface.point(from) : surface.point(to);
+      surface.point(CGAL::Euler::collapse_edge(surface.edge(shortest), surface)) = kept;
+    }
+  }
+}
+
 } // namespace
 
-PolygonMesh unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name,
-                         std::string_view second_name) {
+SolidUnion unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name,
+                        std::string_view second_name) {
   SurfaceMesh a = solid(first, first_name), b = solid(second, second_name), out;
   if (!PMP::corefine_and_compute_union(a, b, out))
     throw TopologyError("union: the solids' union is not a manifold surface (they touch along an edge or at a point)");
   // Points where the surfaces cross are made in double; rounded to the floats Meander
   // keeps, a sliver's corners may fall on a line. Such faces go (collapsed or flipped
-  // away by CGAL), so that no face is flat and none cuts another.
-  SurfaceMesh rounded = to_surface(in_order_of_positions(to_polygons(out)), "union");
+  // away by CGAL), so that no face is flat, and faces that then cross others are
+  // collapsed, so that none cuts another.
+  const PolygonMesh united = in_order_of_positions(to_polygons(out));
+  SurfaceMesh rounded = to_surface(united, "union");
   PMP::remove_degenerate_faces(rounded);
+  uncross_rounded(rounded, made_by_union(united, first, second));
   rounded.collect_garbage();
-  return to_polygons(rounded);
+  SolidUnion result{.mesh = to_polygons(rounded)};
+  result.made = made_by_union(result.mesh, first, second);
+  return result;
 }
 
 } // namespace meander
