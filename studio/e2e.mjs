@@ -195,6 +195,27 @@ try {
   await change(() => page.uncheck('#spacing-on'));
   check((await page.evaluate(() => window.studio.state.stats)).gap_median === undefined, 'without a spacing no gap is measured');
 
+  step('the bridges slider');
+  // A constant wire of the demo pretzel with bridges: the full result says how many and
+  // stays one watertight solid; a preview shows the wire without them.
+  await page.selectOption('#mode', 'constant-wire');
+  await page.waitForFunction(() => window.studio.state.stats?.mode === 'constant-wire' && !window.studio.state.stats.preview &&
+    window.studio.idle());
+  check((await page.evaluate(() => window.studio.state.stats)).bridges === undefined, 'a wire without bridges reports none');
+  await change(async () => {
+    await page.check('#bridges-on');
+    await sliderTo('bridges', '80');
+  });
+  const bridged = await page.evaluate(() => ({ stats: window.studio.state.stats, shown: document.getElementById('bridges-value').textContent,
+    row: [...document.querySelectorAll('#stats tr')].find((r) => r.querySelector('th').textContent === 'bridges')?.textContent }));
+  check(bridged.stats.bridges?.count > 0 && bridged.stats.watertight === true && bridged.stats.self_intersecting === false,
+    `a bridged wire has bridges and is one clear solid (${JSON.stringify(bridged.stats)})`);
+  check(Number(bridged.shown) > 0 && bridged.row?.includes(String(bridged.stats.bridges.count)),
+    `the slider shows its length (${bridged.shown}) and the stats the bridges (${bridged.row})`);
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_bridges.png') });
+  await change(() => page.uncheck('#bridges-on'));
+  check((await page.evaluate(() => window.studio.state.stats)).bridges === undefined, 'unticked, the wire has no bridges');
+
   step('a variable wire');
   // The control mesh (no subdivision) keeps the test quick; the wire is made all the same.
   await page.evaluate(() => {
@@ -356,6 +377,39 @@ try {
     `after choosing dots the page shows the atlas of ${dots.info.texture} (stats: ${dots.stats.texture})`);
   await change(() => page.selectOption('#tiles', 'truchet'));
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_duotone.png') });
+
+  step('a two-colour print');
+  // A shell's wall is in millimetres, so the model needs its size first; with one, the
+  // full result has the shell's two solids, and the Two-colour print download is their
+  // 3MF (a zip). Both are turned off again for what follows.
+  check(await page.isDisabled('#shell-on'), 'without a model size the two-colour print cannot be ticked');
+  await change(async () => {
+    await page.fill('#model-size', '100mm');
+    await page.press('#model-size', 'Enter');
+  });
+  // Made in millimetres, the duotone is drawn back over the surface, at its scale.
+  const sized = await page.evaluate(() => ({ result: window.studio.resultInfo(), surface: window.studio.state.surfaceBox }));
+  const near = (a, b) => a.every((x, i) => Math.abs(x - b[i]) < 0.01 * Math.abs(sized.surface.max.x - sized.surface.min.x));
+  check(near(sized.result.min, Object.values(sized.surface.min)) && near(sized.result.max, Object.values(sized.surface.max)),
+    `a result made to a model size lies where the surface is (${JSON.stringify(sized)})`);
+  await change(() => page.check('#shell-on'));
+  const print = await page.evaluate(async () => {
+    const link = document.querySelector('#downloads a[data-file="print.3mf"]');
+    const bytes = link.href ? new Uint8Array(await (await fetch(link.href)).arrayBuffer()) : new Uint8Array();
+    return { shell: window.studio.state.stats.shell, enabled: link.getAttribute('aria-disabled') === 'false', size: bytes.length,
+      zip: bytes[0] === 0x50 && bytes[1] === 0x4b,
+      row: [...document.querySelectorAll('#stats tr')].find((r) => r.querySelector('th').textContent === 'two-colour print')?.textContent };
+  });
+  check(print.shell?.volumes?.length === 2 && print.shell.volumes.every((v) => v > 0), `the shell's two solids (${JSON.stringify(print.shell)})`);
+  check(print.enabled && print.zip && print.size > 10000 && print.row?.includes('2 solids'),
+    `the Two-colour print download is their 3MF (${JSON.stringify({ ...print, shell: undefined })})`);
+  await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_print.png') });
+  await change(() => page.uncheck('#shell-on'));
+  check(await page.getAttribute('#downloads a[data-file="print.3mf"]', 'aria-disabled') === 'true', 'without the shell there is no print');
+  await change(async () => {
+    await page.fill('#model-size', '');
+    await page.press('#model-size', 'Enter');
+  });
 
   step('the URL, reload, undo and redo');
   // The settings live in the URL (a link shares them) and survive a reload; undo and

@@ -65,7 +65,7 @@ TEST(Jobs, CliAndStudioTakeTheSameParameters) {
   const nlohmann::json listed = nlohmann::json::parse(studio_parameters_json());
   EXPECT_EQ(listed["curve"].size(), parameters_of<CurveJob>().size());
   EXPECT_EQ(listed["wire"].size(), parameters_of<WireJob>().size() - 2); // the mode is the method and shape
-  EXPECT_EQ(listed["duotone"].size(), parameters_of<DuotoneJob>().size() - 2); // no two-colour print: shell, its floor
+  EXPECT_EQ(listed["duotone"].size(), parameters_of<DuotoneJob>().size());
   const auto samples = std::find_if(listed["curve"].begin(), listed["curve"].end(),
                                     [](const nlohmann::json& entry) { return entry["name"] == "samples"; });
   ASSERT_NE(samples, listed["curve"].end());

@@ -349,6 +349,72 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
   EXPECT_EQ(message_of(R"({"session": "a", "preview": 1})"), "preview: expected true or false, got 1");
 }
 
+// Bridges are the constant wire's, made in the full result (their union costs several
+// times the wire): a preview, or another mode given the same settings, has none.
+TEST(Studio, BridgesComeWithTheFullConstantWire) {
+  const StudioSurface surface = demo_surface();
+  StudioParams params{.mode = StudioMode::constant_wire};
+  params.wire.bridges = 1.0;
+  const StudioResult bridged = make_studio_result(surface, params);
+  EXPECT_GT(bridged.bridges.ends.size(), 100u);
+  EXPECT_TRUE(bridged.report.watertight);
+  EXPECT_FALSE(bridged.report.self_intersecting);
+  const auto stats = nlohmann::json::parse(studio_stats_json(bridged));
+  EXPECT_EQ(stats["bridges"]["count"], bridged.bridges.ends.size());
+  EXPECT_EQ(stats["bridges"]["every_pass_tied"], bridged.bridges.every_pass_tied);
+  EXPECT_LE(stats["bridges"]["longest_stretch"].get<double>(), 1.0 + 1e-9);
+  for (const StudioMode mode : {StudioMode::constant_wire, StudioMode::constant_ribbon}) {
+    StudioParams other = params;
+    other.mode = mode;
+    other.preview = mode == StudioMode::constant_wire;
+    const StudioResult plain = make_studio_result(surface, other);
+    EXPECT_TRUE(plain.bridges.ends.empty());
+    EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(plain)).contains("bridges"));
+  }
+}
+
+// A duotone with a shell (its wall in millimetres, with a model size) is also the
+// two-colour print `meander duotone --shell -o OUT.3mf` writes; a preview has none, and
+// a surface that cannot be thickened is still painted, the stats saying why.
+TEST(Studio, ADuotoneWithAShellIsATwoColourPrint) {
+  const StudioSurface surface = demo_surface();
+  const MakeRequest request = parse_make_request(
+      R"({"session": "x", "mode": "duotone", "model_size": "100mm", "shell": 1.5, "texture_size": 64})");
+  ASSERT_EQ(request.params.duotone.shell, 1.5);
+  const StudioResult painted = make_studio_result(surface, request.params);
+  ASSERT_TRUE(painted.shell.has_value());
+  const auto stats = nlohmann::json::parse(studio_stats_json(painted));
+  ASSERT_EQ(stats["shell"]["volumes"].size(), 2u);
+  EXPECT_GT(stats["shell"]["volumes"][0].get<double>(), 0);
+  EXPECT_EQ(stats["shell"]["summary"], shell_summary(*painted.shell, painted.params.duotone));
+  const StudioDownload print = studio_download(surface, painted, StudioFile::print);
+  EXPECT_EQ(print.filename, "pretzel_duotone_print.3mf");
+  const std::filesystem::path path = test::output_dir() / "studio_print.3mf";
+  write_3mf_parts(colored_parts(painted.shell->solids[0], painted.shell->solids[1], painted.params.duotone.tiles.colors), path);
+  EXPECT_TRUE(print.bytes == test::read_file(path));
+
+  StudioParams preview = request.params;
+  preview.preview = true;
+  const StudioResult quick = make_studio_result(surface, preview);
+  EXPECT_FALSE(quick.shell.has_value());
+  EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(quick)).contains("shell"));
+  EXPECT_THROW(studio_download(surface, quick, StudioFile::print), UsageError);
+
+  StudioSurface band{.name = "moebius.obj"};
+  band.repaired = repair(make_shape("moebius", 400), band.name);
+  const StudioResult unprintable = make_studio_result(band, request.params);
+  EXPECT_FALSE(unprintable.shell.has_value());
+  EXPECT_FALSE(unprintable.mesh.positions.empty()); // still painted
+  const std::string refused = nlohmann::json::parse(studio_stats_json(unprintable))["shell"]["refused"];
+  EXPECT_NE(refused.find("not orientable"), std::string::npos) << refused;
+  try {
+    studio_download(band, unprintable, StudioFile::print);
+    ADD_FAILURE() << "a print without a shell";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("not orientable"), std::string::npos) << e.what();
+  }
+}
+
 // A constant preview with `radius auto` after a full result on the same curve takes that
 // result's checked radius (another slider, here the sides, is moving), so that it is as
 // thick as what follows; on another curve (a new seed) it takes the bound on its own curve.

@@ -133,6 +133,11 @@ struct StudioResult {
   PolygonMesh mesh;        // the wire, ribbon or duotone surface; empty in curve mode
   Appearance appearance;   // duotone: the tile atlas and texture coordinates of `mesh`
   double radius = 0;     // constant modes: the radius used (auto resolved)
+  BridgePlan bridges;    // constant wire with bridges (not in a preview): where they are
+  // Duotone with a shell (not in a preview): the two-colour print, or why the surface
+  // could not be thickened (make_shell's TopologyError).
+  std::optional<SplitShell> shell;
+  std::string shell_refusal;
   PrintabilityReport report; // of a wire or ribbon (self-intersections, no thickness)
   // Of a self-intersecting wire or ribbon: how many of the cycle's triangles cross others
   // (crossing_cycle_triangles), so that the page can say when no settings will clear it.
@@ -169,7 +174,9 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
 // leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
 // for wires and ribbons vertices, faces, radius, preview_as_ribbon (true: a wire's preview
 // drawn as its ribbon) and (not for a preview, which has no report) watertight,
-// self_intersecting, volume, printable, for duotone quads, faces, notes, and for a
+// self_intersecting, volume, printable, bridges {count, longest_stretch, every_pass_tied}
+// (with bridges), for duotone quads, faces, notes, shell {volumes, below_floor_corners,
+// summary} or {refused} (with a shell), and for a
 // picture cells (of its quadtree), paper [width, height] in millimetres, pen_up_travel;
 // a picture's curve_length is its line's length on the sheet, in millimetres.
 std::string studio_stats_json(const StudioResult& result);
@@ -182,10 +189,12 @@ enum class StudioFile {
   texture, // duotone: the tile atlas as PNG
   stl, threemf, glb, obj_zip, svg, png,
   duotone_svg, // picture: the two regions its line bounds
+  print,       // duotone with a shell: the two-colour print (3MF)
 };
 
 // "surface.bin", "view.bin", "texture.png", "result.stl", "result.3mf", "result.glb",
-// "result.zip", "curve.svg", "render.png", "duotone.svg"; throws UsageError for any other name.
+// "result.zip", "curve.svg", "render.png", "duotone.svg", "print.3mf"; throws UsageError
+// for any other name.
 StudioFile parse_studio_file(std::string_view name);
 
 // Geometry for the page's three.js view (docs/studio.md, "view.bin"): "MND3", the counts,
@@ -224,7 +233,8 @@ StudioPicture parse_studio_picture(const std::multimap<std::string, std::string>
 // .obj` writes it). A picture's curve.svg, render.png and duotone.svg are what `meander
 // image` writes as OUT.svg, OUT.png and --duotone. Throws UsageError for a mesh file in
 // curve or picture mode, texture.png without a duotone, duotone.svg without a picture,
-// surface.bin of a picture.
+// surface.bin of a picture, print.3mf (the two solids of a shell as parts on two
+// extruders, as `meander duotone --shell -o OUT.3mf` writes) without a shell.
 StudioDownload studio_download(const StudioSurface& surface, const StudioResult& result, StudioFile file,
                                const StudioPicture& picture = {});
 

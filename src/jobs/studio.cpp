@@ -122,12 +122,10 @@ template <class T> std::string json_text(const json& value) {
   return value.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-// Parameters no studio request sets: the mode sets the wire's method and shape, a
-// picture's size was checked when it was uploaded, and the studio makes no two-colour
-// print (a duotone's shell and its floor; the wire's min_thickness is the wire's).
+// Parameters no studio request sets: the mode sets the wire's method and shape, and a
+// picture's size was checked when it was uploaded.
 bool set_by_the_studio(const Parameter& parameter) {
-  return &parameter == &parameters::method || &parameter == &parameters::shape || &parameter == &parameters::max_pixels ||
-         &parameter == &parameters::shell || &parameter == &parameters::shell_min_thickness;
+  return &parameter == &parameters::method || &parameter == &parameters::shape || &parameter == &parameters::max_pixels;
 }
 
 // Sets the parameter `key` of the mode's job from `value`; false if no mode's job has it.
@@ -328,7 +326,12 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   const StudioMode mode = params.mode;
   params.wire.method = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon ? WireMethod::variable : WireMethod::constant;
   params.wire.shape = mode == StudioMode::constant_ribbon || mode == StudioMode::variable_ribbon ? WireShape::ribbon : WireShape::wire;
+  // The page sends every mode's settings; bridges are the constant wire's, and a preview
+  // shows the wire without them (their union costs several times the wire).
+  if (mode != StudioMode::constant_wire || params.preview) params.wire.bridges.reset();
   if (!params.preview) return params;
+  params.duotone.shell.reset(); // the two-colour print is the full result's
+  params.duotone.min_thickness = 0;
   params.image.curve.samples = std::min(params.image.curve.samples, 2);
   int& samples = params.wire.curve.curve.samples;
   samples = std::min(samples, 2);
@@ -408,6 +411,16 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
                             previous->params.duotone.tiles == job.tiles && !previous->appearance.materials.empty();
     TexturedMesh painted =
         paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{}, nullptr, progress);
+    if (job.shell) {
+      if (progress) progress->begin("shell");
+      // Where the surface cannot be thickened, the painted duotone is still shown, and
+      // the stats say why there is no print.
+      try {
+        result.shell = make_shell(duotone, job);
+      } catch (const TopologyError& e) {
+        result.shell_refusal = e.what();
+      }
+    }
     if (progress) progress->begin("separating curves");
     result.curve.curves = separating_curves(duotone, job.tiles.style);
     result.curve_length = total_length(result.curve.curves);
@@ -464,6 +477,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   WireResult made = about_surface([&] { return make_wire(result.curve, job, nullptr, progress); });
   result.mesh = std::move(made.mesh);
   result.radius = made.radius;
+  result.bridges = std::move(made.bridges);
   result.report = made.report;
   result.surface_crossings = int32_t(made.surface_crossings.size());
   if (params.preview)
@@ -505,6 +519,12 @@ std::string studio_stats_json(const StudioResult& result) {
       texture += hex;
     }
     stats["texture"] = texture + " " + std::to_string(tiles.texture_size);
+    if (result.shell)
+      stats["shell"] = {{"volumes", result.shell->volumes},
+                        {"below_floor_corners", result.shell->below_floor_corners},
+                        {"summary", shell_summary(*result.shell, result.params.duotone)}};
+    else if (!result.shell_refusal.empty())
+      stats["shell"] = {{"refused", result.shell_refusal}};
   } else if (result.params.mode != StudioMode::curve) {
     stats["vertices"] = result.mesh.num_vertices();
     stats["faces"] = result.mesh.num_faces();
@@ -527,6 +547,10 @@ std::string studio_stats_json(const StudioResult& result) {
     stats["needle_collapses"] = result.curve.needle_collapses;
     if (result.radius > 0) stats["radius"] = result.radius;
     else stats["radius"] = nullptr;
+    if (result.params.wire.bridges)
+      stats["bridges"] = {{"count", result.bridges.ends.size()},
+                          {"longest_stretch", result.bridges.longest_stretch},
+                          {"every_pass_tied", result.bridges.every_pass_tied}};
   }
   return stats.dump();
 }
@@ -536,11 +560,12 @@ StudioFile parse_studio_file(std::string_view name) {
       {"surface.bin", StudioFile::surface}, {"view.bin", StudioFile::view},      {"texture.png", StudioFile::texture},
       {"result.stl", StudioFile::stl},
       {"result.3mf", StudioFile::threemf},  {"result.glb", StudioFile::glb},     {"result.zip", StudioFile::obj_zip},
-      {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png},     {"duotone.svg", StudioFile::duotone_svg}};
+      {"curve.svg", StudioFile::svg},       {"render.png", StudioFile::png},     {"duotone.svg", StudioFile::duotone_svg},
+      {"print.3mf", StudioFile::print}};
   for (const auto& [file_name, file] : table)
     if (name == file_name) return file;
   throw UsageError("no result file of that name (expected surface.bin, view.bin, texture.png, result.stl, result.3mf, "
-                   "result.glb, result.zip, curve.svg, render.png or duotone.svg)");
+                   "result.glb, result.zip, curve.svg, render.png, duotone.svg or print.3mf)");
 }
 
 std::string studio_view_bytes(const PolygonMesh& mesh, const Polylines& curves, const Appearance& appearance) {
@@ -835,6 +860,15 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     return {png_file_bytes(
                 render(scene, {.width = picture.width, .height = picture.height, .samples = 4, .camera = picture.camera})),
             "image/png", base + ".png"};
+  }
+  case StudioFile::print: {
+    if (!result.shell)
+      throw UsageError(result.shell_refusal.empty()
+                           ? "print.3mf: only a duotone made with a shell (its wall's thickness) is a two-colour print"
+                           : "print.3mf: no two-colour print of this duotone: " + result.shell_refusal);
+    const std::array<ColoredPart, 2> parts =
+        colored_parts(result.shell->solids[0], result.shell->solids[1], result.params.duotone.tiles.colors);
+    return {parts_3mf_bytes(parts, base + "_print.3mf"), "model/3mf", base + "_print.3mf"};
   }
   case StudioFile::duotone_svg:
     if (!picture_mode) throw UsageError("duotone.svg: only a picture's line bounds a duotone drawn on paper");

@@ -166,7 +166,7 @@ function applySurfaceStyle() {
 
 // ---- state and the API ------------------------------------------------------------------
 const state = { session: null, picture: false, revision: 0, busy: false, lastUpdateMs: null, phases: null, error: null,
-  stats: null, surfaceBox: null, full: null, stale: false };
+  stats: null, surfaceBox: null, full: null, stale: false, resultScale: 1 };
 // What became of the full result asked after the last change (state.full): null (it is
 // on screen, or none was asked), 'pending', 'stopped', 'refused' or 'failed'; and whether
 // the view shows a result of other settings than the controls' (state.stale): a preview,
@@ -335,6 +335,9 @@ async function makeOne(preview, ticket) {
   let mark = start;
   const lap = (name) => { const now = performance.now(); phases[name] = now - mark; mark = now; };
   const body = { ...params(), preview };
+  // A result made to a model size is in millimetres, scaled about the origin from the
+  // surface (scaled_to_size): the view draws it back at the surface's scale.
+  const sizeMm = state.picture ? null : modelSizeMillimetres();
   if (holdNext) {
     body.hold = true;
     holdNext = false;
@@ -376,7 +379,12 @@ async function makeOne(preview, ticket) {
     lap('texture');
   }
   const material = lines ? curveMaterial : textured ? duotoneMaterial : resultMaterial;
-  resultObject = replace(resultObject, placed(lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material)));
+  const object = placed(lines ? new THREE.LineSegments(geometry, material) : new THREE.Mesh(geometry, material));
+  const size = state.surfaceBox?.getSize(new THREE.Vector3());
+  state.resultScale = sizeMm && size ? Math.max(size.x, size.y, size.z) / sizeMm : 1;
+  object.position.multiplyScalar(state.resultScale);
+  object.scale.multiplyScalar(state.resultScale);
+  resultObject = replace(resultObject, object);
   applySurfaceStyle();
   // The update ends when the frame showing it is drawn: the geometry's upload and the
   // first draw are part of it.
@@ -561,18 +569,23 @@ function modelSizeMillimetres() {
 
 // The spacing slider is logarithmic, from 1/300 to 1/10 of the model's diagonal, in the
 // model's units or, with a model size, in millimetres (what the server reads then).
-function spacingValue() {
+// The bridges slider, the longest stretch of wire without a bridge, likewise from 1/40
+// to 1/4 (about 4 spacings ties every pass; each bridge costs the full result time).
+function sliderLength(id, smallest, largest) {
   const box = state.surfaceBox;
   if (!box || box.isEmpty()) return null;
   const size = box.getSize(new THREE.Vector3());
   const millimetres = modelSizeMillimetres();
   const scale = millimetres ? millimetres / Math.max(size.x, size.y, size.z) : 1;
-  const t = Number($('spacing').value) / 100;
-  return size.length() * scale * 10 ** (Math.log10(1 / 300) + t * (Math.log10(1 / 10) - Math.log10(1 / 300)));
+  const t = Number($(id).value) / 100;
+  return size.length() * scale * 10 ** (Math.log10(smallest) + t * (Math.log10(largest) - Math.log10(smallest)));
 }
+const spacingValue = () => sliderLength('spacing', 1 / 300, 1 / 10);
+const bridgesValue = () => sliderLength('bridges', 1 / 40, 1 / 4);
 function showSpacing() {
-  const value = spacingValue();
-  $('spacing-value').textContent = value === null ? '' : `${value.toPrecision(3)}${modelSizeMillimetres() ? ' mm' : ''}`;
+  const unit = modelSizeMillimetres() ? ' mm' : '';
+  for (const [id, value] of [['spacing-value', spacingValue()], ['bridges-value', bridgesValue()]])
+    $(id).textContent = value === null ? '' : `${value.toPrecision(3)}${unit}`;
 }
 
 function params() {
@@ -602,6 +615,7 @@ function params() {
     samples: Number($('samples').value),
     radius: $('radius-auto').checked ? 'auto' : Number($('radius').value),
     sides: Number($('sides').value),
+    bridges: $('bridges-on').checked && bridgesValue() !== null ? bridgesValue() : 'none',
     s: Number($('s').value),
     t: Number($('t').value),
     thickness: Number($('thickness').value),
@@ -611,6 +625,8 @@ function params() {
     tiles: $('tiles').value,
     texture_size: Number($('texture-size').value),
     subdivide: Number($('subdivide').value),
+    // Printed, a shell's wall is in millimetres: the model needs its size first.
+    shell: $('shell-on').checked && sized ? Number($('shell').value) : 'none',
   };
 }
 
@@ -633,6 +649,13 @@ function showStats(stats) {
   ];
   if (stats.mode === 'duotone') {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
+    // As `meander duotone --shell`: the two solids, or why the surface has no shell.
+    if (stats.shell?.volumes) {
+      const below = stats.shell.below_floor_corners > 0 ? `, the wall thinner than the floor at ${plural(stats.shell.below_floor_corners, 'corner', 'corners')}` : '';
+      rows.push(['two-colour print', `2 solids of ${stats.shell.volumes.map((v) => v.toPrecision(4)).join(' and ')} mm³${below}`]);
+    } else if (stats.shell?.refused) {
+      rows.push(['two-colour print', `not made: ${stats.shell.refused}`]);
+    }
   } else if (stats.mode !== 'curve' && stats.mode !== 'picture') {
     rows.push(['faces', stats.faces.toLocaleString()]);
     // Over the preview's budget a wire is previewed as its ribbon, a few times lighter, and
@@ -651,6 +674,10 @@ function showStats(stats) {
     if (stats.cap_cuts > 0) rows.push(['caps cut off', `${plural(stats.cap_cuts, 'triangle', 'triangles')} on the boundary`]);
     if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${plural(stats.needle_collapses, 'short edge', 'short edges')} (needles and folded triangles fold the slabs)`]);
     if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
+    // As `meander wire --bridges`: how many, and whether they tie every pass.
+    if (stats.bridges) {
+      rows.push(['bridges', `${stats.bridges.count.toLocaleString()}, the longest stretch without one ${stats.bridges.longest_stretch.toPrecision(3)}${stats.bridges.every_pass_tied ? ': every pass tied' : ''}`]);
+    }
   }
   if (stats.gap_median !== undefined) {
     rows.push(['median gap', `${stats.gap_median.toPrecision(3)} (CV ${stats.gap_cv.toFixed(2)})`]);
@@ -665,7 +692,8 @@ function updateDownloads() {
   const noMesh = ['curve', 'picture'].includes($('mode').value);
   for (const a of document.querySelectorAll('#downloads a')) {
     // A preview is not offered for download: the full result follows it.
-    const enabled = state.revision > 0 && !state.busy && !state.stale && !(noMesh && a.hasAttribute('data-mesh'));
+    const enabled = state.revision > 0 && !state.busy && !state.stale && !(noMesh && a.hasAttribute('data-mesh')) &&
+      !(a.hasAttribute('data-print') && !state.stats?.shell?.volumes);
     a.setAttribute('aria-disabled', String(!enabled));
     if (enabled) {
       a.href = `/api/result/${state.session}/${a.dataset.file}`;
@@ -679,9 +707,11 @@ function updateDownloads() {
 }
 // The render and the plotter drawing as the view shows them: the camera on screen, at the
 // view's size (the drawing's sheet turned as the view is).
+// A result in millimetres is seen from the camera in millimetres too.
 function viewQuery() {
   const v = (vector) => vector.toArray().map((x) => x.toPrecision(7)).join(',');
-  return `eye=${v(camera.position)}&target=${v(controls.target)}&up=${v(camera.up)}&fov=${camera.fov}&size=${viewSize.w}x${viewSize.h}`;
+  const mm = (point) => v(point.clone().divideScalar(state.resultScale));
+  return `eye=${mm(camera.position)}&target=${mm(controls.target)}&up=${v(camera.up)}&fov=${camera.fov}&size=${viewSize.w}x${viewSize.h}`;
 }
 for (const file of ['render.png', 'curve.svg']) {
   $('downloads').querySelector(`a[data-file="${file}"]`).addEventListener('click', (e) => {
@@ -693,8 +723,8 @@ for (const file of ['render.png', 'curve.svg']) {
 // ---- controls -----------------------------------------------------------------------------
 // Every control the settings are made of, as the URL and the local storage keep them.
 const settingIds = ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
-  'samples', 'radius', 'radius-auto', 'sides', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
-  'texture-size', 'subdivide', 'surface', 'plotter', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
+  'samples', 'radius', 'radius-auto', 'sides', 'bridges-on', 'bridges', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
+  'texture-size', 'subdivide', 'shell-on', 'shell', 'surface', 'plotter', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
 const valueOf = (el) => (el.type === 'checkbox' ? (el.checked ? '1' : '0') : el.value);
 const defaults = Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
 function settings() {
@@ -797,6 +827,8 @@ function showModeControls() {
 const pageHelp = {
   mode: 'what to make: the curve, a wire or ribbon along it (constant: a tube of one radius; variable: slabs that fill the surface), or a two-colour surface split by the curve; of a picture, its drawing with one closed line',
   'radius-auto': 'the largest radius that keeps the wire clear of itself',
+  'bridges-on': 'fuse neighbouring passes with struts, so that the printed wire is one rigid piece (in the full result: a preview shows the wire without them)',
+  'shell-on': 'thicken the surface inward into a shell cut along the curve into two solids, one per colour, for a two-extruder printer (the Two-colour print download; needs a model size)',
   surface: 'how the input surface is drawn behind the result',
   plotter: 'show the pen plotter\'s drawing of the curve as the view shows it, its back hidden, on A4 (the Plotter SVG download); uncheck to turn the view again',
   nozzle: 'the printer\'s nozzle width in millimetres: with a model size, the wire must be 2 nozzles thick and its parts a nozzle apart',
@@ -886,14 +918,17 @@ function syncControls() {
   $('radius').disabled = $('radius-auto').checked;
   $('spacing').disabled = !$('spacing-on').checked;
   $('branches').disabled = !$('branches-on').checked;
+  $('bridges').disabled = !$('bridges-on').checked;
+  $('shell-on').disabled = modelSizeMillimetres() === null;
+  $('shell').disabled = !$('shell-on').checked || $('shell-on').disabled;
   for (const output of document.querySelectorAll('output[for]')) if (!output.id) output.textContent = $(output.htmlFor.value).value;
   showSpacing();
   showModeControls();
   applySurfaceStyle();
   showSheet();
 }
-for (const id of ['radius-auto', 'spacing-on', 'branches-on']) $(id).addEventListener('input', syncControls, { capture: true });
-for (const id of ['spacing', 'model-size']) $(id).addEventListener('input', showSpacing);
+for (const id of ['radius-auto', 'spacing-on', 'branches-on', 'bridges-on', 'shell-on', 'model-size']) $(id).addEventListener('input', syncControls, { capture: true });
+for (const id of ['spacing', 'bridges', 'model-size']) $(id).addEventListener('input', showSpacing);
 $('new-seed').addEventListener('click', () => {
   $('seed').value = Math.floor(Math.random() * 2 ** 31);
   changed();
