@@ -10,6 +10,7 @@
 #include "meander/io.h"
 #include "meander/jobs.h"
 #include "meander/shapes.h"
+#include "meander/textured_io.h"
 
 #include <gtest/gtest.h>
 
@@ -190,9 +191,18 @@ TEST(Bridges, TheCliSaysWhereTheyAreAndCgalAgrees) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const auto dir = test::output_dir();
   const auto out = dir / "bridged.stl";
-  const test::CommandResult r = test::run_cli(
-      {"wire", (test::shared_meshes() / "genus3hexa1.obj").string(), "-o", out.string(), "--spacing", "0.1", "--bridges", "0.4"});
+  const test::CommandResult r = test::run_cli({"wire", (test::shared_meshes() / "genus3hexa1.obj").string(), "-o", out.string(),
+                                               "--spacing", "0.1", "--bridges", "0.4", "--png", (dir / "bridged.png").string(),
+                                               "--size", "400x300"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The picture shows the bridges in their own colour, blue beside the copper wire.
+  const Texture picture = read_texture(dir / "bridged.png");
+  const auto blue = [](const Texture& t) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < t.rgba.size(); i += 4) n += t.rgba[i + 2] > t.rgba[i] + 40;
+    return n;
+  };
+  EXPECT_GT(blue(picture), 50u);
   EXPECT_NE(r.err.find("Bridges: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("every pass is tied to the rest"), std::string::npos) << r.err;
   const PolygonMesh wire = read_mesh(out);
@@ -205,6 +215,11 @@ TEST(Bridges, TheCliSaysWhereTheyAreAndCgalAgrees) {
   const test::CommandResult ribbon = test::run_cli({"wire", (test::shared_meshes() / "genus3hexa1.obj").string(), "-o",
                                                     (dir / "ribbon.stl").string(), "--shape", "ribbon", "--bridges", "0.4"});
   EXPECT_EQ(ribbon.exit_code, 2);
+  const test::CommandResult free = test::run_cli({"wire", (test::shared_meshes() / "genus3hexa1.obj").string(), "-o",
+                                                  (dir / "free.stl").string(), "--spacing", "0.1", "--png",
+                                                  (dir / "free.png").string(), "--size", "400x300"});
+  ASSERT_EQ(free.exit_code, 0) << free.err;
+  EXPECT_EQ(blue(read_texture(dir / "free.png")), 0u);
   EXPECT_NE(ribbon.err.find("bridges"), std::string::npos) << ribbon.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "ribbon.stl"));
 

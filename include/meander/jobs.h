@@ -71,6 +71,7 @@ struct WireResult {
   // With WireJob::bridges: where they are (ends into the curve's points), the longest
   // stretch without one, whether they join every curve.
   BridgePlan bridges;
+  std::vector<uint8_t> bridge_faces; // with bridges fused in: per face of mesh, 1 on a strut
   PrintabilityReport report;
   // Of a self-intersecting wire: the cycle's triangles that cross others
   // (crossing_cycle_triangles), where no wire that follows the surface can be clear.
@@ -196,15 +197,19 @@ std::string line_picture_duotone_svg(const LinePicture& picture, const ImageJob&
 // as 3D programs show it.
 Polylines line_picture_curve(const LinePicture& picture);
 
-// The colours of the pictures: a copper wire on a light grey surface.
+// The colours of the pictures: a copper wire on a light grey surface, its bridges blue.
 inline constexpr Rgb wire_color{0.72f, 0.45f, 0.2f};
+inline constexpr Rgb bridge_color{0.2f, 0.42f, 0.62f};
 inline constexpr Rgb surface_color{0.82f, 0.82f, 0.82f};
 
 // The pictures, as in the paper's figures: the curve with the surface (the cycle's
 // triangles) hiding its back parts; a wire half sunk in that surface, drawn `occluder`;
-// a ribbon, which lies in the surface, alone; a duotone as painted.
+// a ribbon, which lies in the surface, alone; a duotone as painted. The faces
+// `bridge_faces` flags (WireResult::bridge_faces; none if empty) are drawn in the
+// bridges' colour.
 Scene curve_scene(const CurveResult& curve, MeshStyle occluder = MeshStyle::hidden);
-Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder = MeshStyle::hidden);
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder = MeshStyle::hidden,
+                 std::span<const uint8_t> bridge_faces = {});
 Scene duotone_scene(const TexturedMesh& surface);
 
 } // namespace meander

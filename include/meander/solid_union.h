@@ -9,9 +9,16 @@
 
 namespace meander {
 
+// Where a vertex of the union comes from.
+enum class UnionVertex : uint8_t {
+  first,   // a vertex of the first mesh
+  second,  // of the second
+  crossing // made where their surfaces cross
+};
+
 struct SolidUnion {
   PolygonMesh mesh;
-  std::vector<uint8_t> made; // per vertex: 1 where it is at no input vertex (where the surfaces cross)
+  std::vector<UnionVertex> origin; // per vertex
 };
 
 // The boundary of the union of the solids that two closed, outward meshes bound (neither

@@ -134,6 +134,7 @@ struct StudioResult {
   Appearance appearance;   // duotone: the tile atlas and texture coordinates of `mesh`
   double radius = 0;     // constant modes: the radius used (auto resolved)
   BridgePlan bridges;    // constant wire with bridges (not in a preview): where they are
+  std::vector<uint8_t> bridge_faces; // and which faces of `mesh` are on them
   // Duotone with a shell (not in a preview): the two-colour print, or why the surface
   // could not be thickened (make_shell's TopologyError).
   std::optional<SplitShell> shell;

@@ -43,8 +43,8 @@ double covered_area(const QuadMesh& quads) {
 // measure the crease's V.
 std::vector<uint8_t> beside_creases(const SolidUnion& united, double reach) {
   std::vector<Vec3> crease;
-  for (size_t v = 0; v < united.made.size(); ++v)
-    if (united.made[v]) crease.push_back(united.mesh.positions[v]);
+  for (size_t v = 0; v < united.origin.size(); ++v)
+    if (united.origin[v] == UnionVertex::crossing) crease.push_back(united.mesh.positions[v]);
   std::vector<uint8_t> near(united.mesh.positions.size(), 0);
   if (crease.empty()) return near;
   const PointGrid grid(crease, reach, bounding_box(united.mesh.positions));
@@ -121,6 +121,11 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
                               ", so bridges cannot be fused into it: choose a smaller radius (auto: the largest clear one)");
         }
         unmeasured = beside_creases(united, 1.5 * made.radius);
+        // A face with a corner of a strut lies on the strut (a face between two points
+        // of the crease, rarely, on either).
+        result.bridge_faces.assign(size_t(united.mesh.num_faces()), 0);
+        for (int32_t f = 0; f < united.mesh.num_faces(); ++f)
+          for (const int32_t v : united.mesh.face(f)) result.bridge_faces[size_t(f)] |= united.origin[size_t(v)] == UnionVertex::second;
         result.mesh = std::move(united.mesh);
       }
     }
@@ -301,8 +306,17 @@ Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {
   return scene;
 }
 
-Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder) {
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder,
+                 std::span<const uint8_t> bridge_faces) {
   Scene scene;
+  if (!bridge_faces.empty()) {
+    PolygonMesh bridges = wire;
+    remove_faces(wire, bridge_faces);
+    std::vector<uint8_t> tube(bridge_faces.size());
+    for (size_t f = 0; f < tube.size(); ++f) tube[f] = !bridge_faces[f];
+    remove_faces(bridges, tube);
+    scene.meshes.push_back({.mesh = std::move(bridges), .color = bridge_color});
+  }
   scene.meshes.push_back({.mesh = std::move(wire), .color = wire_color});
   if (shape == WireShape::wire)
     scene.meshes.push_back({.mesh = curve_surface(curve), .color = surface_color, .style = occluder});

@@ -478,6 +478,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
   result.mesh = std::move(made.mesh);
   result.radius = made.radius;
   result.bridges = std::move(made.bridges);
+  result.bridge_faces = std::move(made.bridge_faces);
   result.report = made.report;
   result.surface_crossings = int32_t(made.surface_crossings.size());
   if (params.preview)
@@ -856,7 +857,8 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
                         : curve_mode ? curve_scene(result.curve)
-                                     : wire_scene(result.mesh, result.curve, result.params.wire.shape, MeshStyle::faint);
+                                     : wire_scene(result.mesh, result.curve, result.params.wire.shape, MeshStyle::faint,
+                                                  result.bridge_faces);
     return {png_file_bytes(
                 render(scene, {.width = picture.width, .height = picture.height, .samples = 4, .camera = picture.camera})),
             "image/png", base + ".png"};

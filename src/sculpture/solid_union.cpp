@@ -111,22 +111,25 @@ PolygonMesh in_order_of_positions(const PolygonMesh& mesh) {
   return result;
 }
 
-// Per vertex of `united`: 1 where it lies at no vertex of `first` or `second` (the union
-// made it where their surfaces cross).
-std::vector<uint8_t> made_by_union(const PolygonMesh& united, const PolygonMesh& first, const PolygonMesh& second) {
+// Per vertex of `united`: the input vertex it lies at, if any.
+std::vector<UnionVertex> vertex_origins(const PolygonMesh& united, const PolygonMesh& first, const PolygonMesh& second) {
   const auto less = [](Vec3 a, Vec3 b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
-  std::vector<Vec3> before = first.positions;
-  before.insert(before.end(), second.positions.begin(), second.positions.end());
-  std::sort(before.begin(), before.end(), less);
-  std::vector<uint8_t> made(united.positions.size());
-  for (size_t v = 0; v < made.size(); ++v) made[v] = !std::binary_search(before.begin(), before.end(), united.positions[v], less);
-  return made;
+  std::array<std::vector<Vec3>, 2> before{first.positions, second.positions};
+  for (std::vector<Vec3>& points : before) std::sort(points.begin(), points.end(), less);
+  std::vector<UnionVertex> origin(united.positions.size());
+  for (size_t v = 0; v < origin.size(); ++v) {
+    const Vec3 p = united.positions[v];
+    origin[v] = std::binary_search(before[0].begin(), before[0].end(), p, less)   ? UnionVertex::first
+                : std::binary_search(before[1].begin(), before[1].end(), p, less) ? UnionVertex::second
+                                                                                  : UnionVertex::crossing;
+  }
+  return origin;
 }
 
-// The faces of `surface` within two rings of a vertex flagged in `made` (by index).
-std::vector<SurfaceMesh::Face_index> faces_near(const SurfaceMesh& surface, const std::vector<uint8_t>& made) {
+// The faces of `surface` within two rings of a vertex made where the surfaces cross.
+std::vector<SurfaceMesh::Face_index> faces_near(const SurfaceMesh& surface, const std::vector<UnionVertex>& origin) {
   std::vector<uint8_t> ring(surface.num_vertices() + surface.number_of_removed_vertices(), 0);
-  for (SurfaceMesh::Vertex_index v : surface.vertices()) ring[v.idx()] = made[v.idx()];
+  for (SurfaceMesh::Vertex_index v : surface.vertices()) ring[v.idx()] = origin[v.idx()] == UnionVertex::crossing;
   for (const uint8_t step : {uint8_t(1), uint8_t(2)}) // grow the flagged vertices by one ring, twice
     for (SurfaceMesh::Vertex_index v : surface.vertices())
       if (ring[v.idx()] == step)
@@ -147,10 +150,10 @@ std::vector<SurfaceMesh::Face_index> faces_near(const SurfaceMesh& surface, cons
 // corefinement in double crosses nothing): the shortest edge of each face found
 // crossing another there is collapsed into its end that came from the inputs (its
 // position is kept exactly), a few rounds while any are found.
-void uncross_rounded(SurfaceMesh& surface, const std::vector<uint8_t>& made) {
+void uncross_rounded(SurfaceMesh& surface, const std::vector<UnionVertex>& origin) {
   for (int round = 0; round < 8; ++round) {
     std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> crossing;
-    PMP::self_intersections(faces_near(surface, made), surface, std::back_inserter(crossing));
+    PMP::self_intersections(faces_near(surface, origin), surface, std::back_inserter(crossing));
     if (crossing.empty()) return;
     for (const auto& pair : crossing) {
       if (surface.is_removed(pair.first) || surface.is_removed(pair.second)) continue;
@@ -163,7 +166,8 @@ void uncross_rounded(SurfaceMesh& surface, const std::vector<uint8_t>& made) {
             length = l, shortest = h;
       if (shortest == SurfaceMesh::null_halfedge()) continue;
       const SurfaceMesh::Vertex_index from = surface.source(shortest), to = surface.target(shortest);
-      const Kernel::Point_3 kept = made[to.idx()] && !made[from.idx()] ? surface.point(from) : surface.point(to);
+      const bool made_to = origin[to.idx()] == UnionVertex::crossing, made_from = origin[from.idx()] == UnionVertex::crossing;
+      const Kernel::Point_3 kept = made_to && !made_from ? surface.point(from) : surface.point(to);
       surface.point(CGAL::Euler::collapse_edge(surface.edge(shortest), surface)) = kept;
     }
   }
@@ -183,10 +187,10 @@ SolidUnion unite_solids(const PolygonMesh& first, const PolygonMesh& second, std
   const PolygonMesh united = in_order_of_positions(to_polygons(out));
   SurfaceMesh rounded = to_surface(united, "union");
   PMP::remove_degenerate_faces(rounded);
-  uncross_rounded(rounded, made_by_union(united, first, second));
+  uncross_rounded(rounded, vertex_origins(united, first, second));
   rounded.collect_garbage();
   SolidUnion result{.mesh = to_polygons(rounded)};
-  result.made = made_by_union(result.mesh, first, second);
+  result.origin = vertex_origins(result.mesh, first, second);
   return result;
 }
 
