@@ -19,4 +19,8 @@ struct CgalVerdict {
 
 CgalVerdict cgal_judge(const PolygonMesh& mesh);
 
+// The least distance from a vertex or edge midpoint of `from` to the surface of `to`
+// (CGAL's AABB tree).
+double cgal_least_distance(const PolygonMesh& from, const PolygonMesh& to);
+
 } // namespace meander::test

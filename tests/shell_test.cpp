@@ -60,9 +60,8 @@ double surface_volume(const Duotone& d) {
   return std::abs(volume);
 }
 
-// The checks every shell must pass; `closed`: the surface has no boundary, so the union's
-// outside encloses what the surface does.
-void expect_two_solids(const Duotone& d, const SplitShell& shell, bool closed) {
+// Each solid of a shell: closed, outward, clear of itself, of the volume reported.
+void expect_solids(const SplitShell& shell) {
   for (int k = 0; k < 2; ++k) {
     SCOPED_TRACE("solid " + std::to_string(k));
     const test::CgalVerdict v = test::cgal_judge(shell.solids[size_t(k)]);
@@ -73,6 +72,12 @@ void expect_two_solids(const Duotone& d, const SplitShell& shell, bool closed) {
     EXPECT_NEAR(v.volume, shell.volumes[size_t(k)], 1e-6 * v.volume);
     EXPECT_GT(v.volume, 0);
   }
+}
+
+// The checks every shell must pass; `closed`: the surface has no boundary, so the union's
+// outside encloses what the surface does.
+void expect_two_solids(const Duotone& d, const SplitShell& shell, bool closed) {
+  expect_solids(shell);
   // They overlap nowhere: the union's volume is the sum (an overlap of 0.1% would show).
   const PolygonMesh both = unite_solids(shell.solids[0], shell.solids[1]).mesh;
   const test::CgalVerdict u = test::cgal_judge(both);
@@ -93,13 +98,14 @@ struct Case {
   const char* name;
   PolygonMesh (*make)();
   bool closed;
+  double clearance; // a clearance these quads take (at most a fifth of their size)
 };
 
-const Case kShapes[] = {{"sphere", [] { return sphere(400); }, true},
-                        {"torus", [] { return torus(600); }, true},
-                        {"genus_2", [] { return genus_surface(2, 1200); }, true},
-                        {"genus_3", [] { return genus_surface(3, 1600); }, true},
-                        {"grid_a_disc", [] { return grid(300); }, false}};
+const Case kShapes[] = {{"sphere", [] { return sphere(400); }, true, 0.4},
+                        {"torus", [] { return torus(600); }, true, 0.4},
+                        {"genus_2", [] { return genus_surface(2, 1200); }, true, 0.15},
+                        {"genus_3", [] { return genus_surface(3, 1600); }, true, 0.08},
+                        {"grid_a_disc", [] { return grid(300); }, false, 0.4}};
 
 class ShellOn : public ::testing::TestWithParam<Case> {};
 
@@ -110,6 +116,26 @@ TEST_P(ShellOn, TwoSolidsThatMakeTheShell) {
   expect_two_solids(d, shell, GetParam().closed);
   EXPECT_GT(shell.thinnest, 0);
   EXPECT_LE(shell.thinnest, 2 + 1e-9);
+}
+
+// With a clearance the two solids are each still closed, outward and clear of
+// themselves, but never nearer each other than 0.45 of it; the volume they lose is a
+// slab about the clearance wide along the cut, through the wall.
+TEST_P(ShellOn, AClearanceDrawsTheTwoSolidsApart) {
+  DuotoneJob job = job_of(100, 2);
+  const Duotone d = duotone_of(GetParam().make(), job);
+  const SplitShell joined = make_shell(d, job);
+  job.clearance = GetParam().clearance;
+  const SplitShell apart = make_shell(d, job);
+  expect_solids(apart);
+  for (int k = 0; k < 2; ++k)
+    EXPECT_GE(test::cgal_least_distance(apart.solids[size_t(k)], apart.solids[size_t(1 - k)]), 0.45 * job.clearance);
+  EXPECT_GE(apart.apart, 0.45 * job.clearance);
+  const double lost = joined.volumes[0] + joined.volumes[1] - apart.volumes[0] - apart.volumes[1];
+  const double slab = job.clearance * 2 * total_length(separating_curves(d, job.tiles.style));
+  EXPECT_GT(lost, 0.5 * slab);
+  EXPECT_LT(lost, 1.5 * slab);
+  EXPECT_THAT(shell_summary(apart, job), HasSubstr("apart"));
 }
 
 INSTANTIATE_TEST_SUITE_P(GenusZeroToThreeAndADisc, ShellOn, ::testing::ValuesIn(kShapes),
@@ -285,6 +311,32 @@ TEST(CliShell, TwoColourPrintIn3mfAndPartsThatPrusaSlicerOpens) {
   EXPECT_EQ(info.objects, 1) << info.text; // one object: the two parts stay together
 }
 
+// Two pieces to print apart: each closed, outward and clear of itself, never nearer the
+// other than 0.45 of the clearance (CGAL measures), each opened by PrusaSlicer.
+TEST(CliShell, AClearanceMakesTwoPiecesToPrintApart) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const fs::path dir = test::output_dir();
+  const test::CommandResult r = test::run_cli({"duotone", (test::shared_meshes() / "spot_triangulated.obj").string(),
+                                               "--model-size", "100mm", "--spacing", "5mm", "--shell", "1.5mm", "--clearance",
+                                               "0.3mm", "-o", (dir / "print.3mf").string(), "--parts",
+                                               (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("apart"));
+  const std::array<PolygonMesh, 2> parts{read_mesh(dir / "a.stl"), read_mesh(dir / "b.stl")};
+  for (int k = 0; k < 2; ++k) {
+    const test::CgalVerdict v = test::cgal_judge(parts[size_t(k)]);
+    EXPECT_TRUE(v.closed && v.outward && !v.self_intersecting);
+    EXPECT_GE(test::cgal_least_distance(parts[size_t(k)], parts[size_t(1 - k)]), 0.45 * 0.3);
+  }
+  MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
+  for (const char* part : {"a.stl", "b.stl"}) {
+    const test::SlicerInfo info = test::prusa_slicer_info(dir / part);
+    ASSERT_EQ(info.status, 0) << info.text;
+    EXPECT_TRUE(info.manifold) << info.text;
+    EXPECT_EQ(info.parts, 1) << info.text;
+  }
+}
+
 TEST(CliShell, RefusesBadRequestsWithoutOutput) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const fs::path dir = test::output_dir();
@@ -303,6 +355,8 @@ TEST(CliShell, RefusesBadRequestsWithoutOutput) {
       {{"duotone", eight, "-o", out, "--shell", "0.1", "--parts", "a.stl"}, 2, "A.stl,B.stl"},
       {{"duotone", eight, "-o", out, "--model-size", "100mm", "--shell", "0.5mm"}, 2, "--shell"},
       {{"duotone", eight, "-o", out, "--shell", "2mm"}, 2, "unit"},
+      {{"duotone", eight, "-o", out, "--clearance", "0.1"}, 2, "--clearance applies to a shell"},
+      {{"duotone", eight, "-o", out, "--shell", "0.1", "--clearance", "1"}, 2, "at most"},
       {{"duotone", (test::shared_meshes() / "moebius.obj").string(), "-o", out, "--quad", "dual-simplest", "--shell", "0.01"},
        1, "not orientable"},
   };

@@ -155,8 +155,25 @@ struct RegionOrigins {
 // The same with the quads' corners at `at` (one place per vertex of duotone.quads): the
 // same vertices and faces, each mapped from the quad halves either side of its corner
 // 0-2 fold to the moved ones (the inside of a shell, shell.h), and with `origins`, where
-// they come from. Throws std::invalid_argument unless `at` has a place per vertex.
+// they come from. With `gaps` (5 per quad, in [0, 0.2]: at 5 * quad + side, the same for
+// both quads on a side, then the inside's), the regions are drawn apart: on each side
+// the cut's point moves that fraction of the side towards the corner of the region's
+// colour (each region its own point), and inside each quad the curves move as far in
+// between the sides' gaps, at least the inside's, scaled about their apex; the bands are
+// then triangulated by ear clipping. Throws std::invalid_argument unless `at` has a
+// place per vertex and `gaps`, if given, 5 per quad.
 std::array<PolygonMesh, 2> duotone_regions(const Duotone& duotone, TileStyle style, std::span<const Vec3> at,
-                                           RegionOrigins* origins = nullptr);
+                                           RegionOrigins* origins = nullptr, std::span<const float> gaps = {});
+
+// The gaps that draw the regions `clearance` apart on two copies of the quads (their
+// corners at `outer` and at `inner`: a shell's outside and inside): on each side, the
+// fraction of it that moves the cut's point so far that the curve leaving it (at its
+// angle to the side) moves half the clearance, the largest of both copies and both
+// quads on the side; inside each quad, the fraction of a unit step of its square that
+// is at least half the clearance in every direction on either copy. Values over 0.2
+// are returned as they are (too wide for the quad). Throws std::invalid_argument unless
+// `outer` and `inner` have a place per vertex.
+std::vector<float> duotone_gaps(const Duotone& duotone, TileStyle style, std::span<const Vec3> outer,
+                                std::span<const Vec3> inner, double clearance);
 
 } // namespace meander

@@ -106,6 +106,7 @@ struct DuotoneJob {
   // (make_shell), judged against min_thickness (with a model size 0.8 mm unless set).
   std::optional<double> shell;
   double min_thickness = 0;
+  double clearance = 0; // > 0 with shell: the two solids that far apart (ShellOptions::clearance)
 };
 
 // make_duotone(mesh, connectivity, job.duotone), on the remeshed surface with job.spacing

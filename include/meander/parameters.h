@@ -204,6 +204,12 @@ inline constexpr Parameter shell_min_thickness{.name = "min_thickness",
                                                        "given); where the model is too thin for it the report says so",
                                                .min = 0,
                                                .length = true};
+inline constexpr Parameter clearance{.name = "clearance",
+                                     .help = "with --shell: draw the two pieces this far apart at the cut, to be printed "
+                                             "apart and put together, in mesh units (millimetres with a model size; 0: "
+                                             "they meet, one print)",
+                                     .min = 0,
+                                     .length = true};
 
 // `meander image`: every length in millimetres on the sheet.
 inline constexpr std::string_view width_choices[] = {"none"};
@@ -310,6 +316,7 @@ template <class Job, class Visit> void visit_parameters(Job& job, Visit&& visit)
     visit(parameters::subdivide, job.subdivide);
     visit(parameters::shell, job.shell);
     visit(parameters::shell_min_thickness, job.min_thickness);
+    visit(parameters::clearance, job.clearance);
   }
 }
 

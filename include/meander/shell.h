@@ -16,6 +16,9 @@ struct ShellOptions {
   // The thinnest wall the printer makes: where the wall must be thinner (the model is
   // thinner than two walls there), the result says so. 0: no floor.
   double min_thickness = 0;
+  // > 0: the two pieces drawn apart by this much, to be printed apart and put together
+  // (each region's boundary moved half of it back from the cut on both surfaces).
+  double clearance = 0;
 };
 
 struct SplitShell {
@@ -32,6 +35,10 @@ struct SplitShell {
   int32_t below_floor_corners = 0; // thinner than ShellOptions::min_thickness
   double thinnest = 0;             // the thinnest wall, at a corner
   Vec3 thinnest_at;                // that corner
+  // With a clearance: the least distance from a corner or side midpoint of either
+  // solid's faces to the other, and that point.
+  double apart = 0;
+  Vec3 apart_at;
 };
 
 // The duotone's surface thickened into a shell and cut along its separating curves
@@ -43,11 +50,15 @@ struct SplitShell {
 // the surface (near a sharp bend, away from its other side); corners of quads whose
 // inside would fold over or cross itself or the outside are drawn back. The tiles inside
 // each quad half move with its corners, so that no sliver of a tile turns over.
+// With a clearance each region is drawn back from the cut (duotone_regions' gaps: half
+// the clearance on each quad side, on the outside and on the inside, whichever side is
+// shorter), so the solids no longer meet: each has its own walls.
 // Deterministic. Throws ParameterError for a thickness that is not a positive number or
-// is below min_thickness; TopologyError, naming a place, for a non-orientable surface (it
+// is below min_thickness, a negative clearance or one wider than 0.4 of a quad side; TopologyError, naming a place, for a non-orientable surface (it
 // has no inside: a Möbius band), one that crosses or touches itself, or one whose inside
 // still crosses itself (a surface that folds more sharply than its quads let the inside
-// follow, or is too thin: the crumpled ears of a coarse remesh). O(n log n) for n
+// follow, or is too thin: the crumpled ears of a coarse remesh), or a piece drawn back
+// that crosses itself. O(n log n) for n
 // triangles of the regions, plus the self-intersection searches (printability.h) of the
 // surface, each solid and the whole shell.
 SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options);

@@ -216,7 +216,8 @@ double shell_floor(const DuotoneJob& job) { return job.min_thickness > 0 ? job.m
 
 SplitShell make_shell(const Duotone& duotone, const DuotoneJob& job) {
   if (!job.shell) throw UsageError("make_shell: the job has no shell (its wall's thickness)");
-  return duotone_shell(duotone, job.tiles.style, {.thickness = *job.shell, .min_thickness = shell_floor(job)});
+  return duotone_shell(duotone, job.tiles.style,
+                       {.thickness = *job.shell, .min_thickness = shell_floor(job), .clearance = job.clearance});
 }
 
 std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
@@ -228,7 +229,11 @@ std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
   const auto at = [&](Vec3 p) { return "(" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")"; };
   std::string text = "2 solids, one per colour, closed and outward: " + std::to_string(shell.solids[0].num_faces()) + " and " +
                      std::to_string(shell.solids[1].num_faces()) + " triangles, volumes " + number(shell.volumes[0]) + " and " +
-                     number(shell.volumes[1]) + "; a wall of " + number(*job.shell);
+                     number(shell.volumes[1]) +
+                     (job.clearance > 0 ? ", at least " + number(shell.apart) + " apart (at " + at(shell.apart_at) + "; clearance " +
+                                              number(job.clearance) + ")"
+                                        : "") +
+                     "; a wall of " + number(*job.shell);
   if (shell.reduced_corners == 0) return text + " everywhere.";
   text += ", thinner at " + std::to_string(shell.reduced_corners) +
           " quad corners (the model is thinner than two walls there, or bends sharply), down to " + number(shell.thinnest) +

@@ -209,6 +209,8 @@ void check_parameters(const DuotoneJob& job) {
   check_numbers(job);
   if (job.min_thickness > 0 && !job.shell)
     throw ParameterError(parameters::shell_min_thickness.name, " applies to a shell (--shell): the painted surface has no thickness");
+  if (job.clearance > 0 && !job.shell)
+    throw ParameterError(parameters::clearance.name, " applies to a shell (--shell): the pieces of a two-colour print");
 }
 void check_parameters(const ImageJob& job) {
   check_numbers(job);

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace meander {
@@ -459,12 +460,51 @@ Polylines separating_curves(const Duotone& d, TileStyle style) {
 
 std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style) { return duotone_regions(d, style, d.quads.positions); }
 
+namespace {
+
+// Triangles of a simple polygon (indices into `pts`, counter-clockwise) by ear clipping,
+// appended to `out` counter-clockwise. Quadratic, for the few points of a tile piece.
+void clip_ears(std::vector<int> polygon, const std::vector<LocalPoint>& pts, std::vector<std::array<int, 3>>& out) {
+  const auto area = [&](int a, int b, int c) {
+    const LocalPoint p = pts[size_t(a)], q = pts[size_t(b)], r = pts[size_t(c)];
+    return (q.s - p.s) * (r.t - p.t) - (q.t - p.t) * (r.s - p.s);
+  };
+  while (polygon.size() > 3) {
+    const size_t n = polygon.size();
+    size_t ear = n, widest = 0;
+    double widest_area = -INFINITY;
+    for (size_t i = 0; i < n && ear == n; ++i) {
+      const int a = polygon[(i + n - 1) % n], b = polygon[i], c = polygon[(i + 1) % n];
+      const double abc = area(a, b, c);
+      if (abc > widest_area) widest_area = abc, widest = i;
+      if (!(abc > 0)) continue;
+      bool empty = true;
+      for (const int x : polygon)
+        if (x != a && x != b && x != c && area(a, b, x) >= 0 && area(b, c, x) >= 0 && area(c, a, x) >= 0) empty = false;
+      if (empty) ear = i;
+    }
+    if (ear == n) ear = widest; // only rounding leaves no clean ear: the widest goes
+    out.push_back({polygon[(ear + n - 1) % n], polygon[ear], polygon[(ear + 1) % n]});
+    polygon.erase(polygon.begin() + std::ptrdiff_t(ear));
+  }
+  if (polygon.size() == 3) out.push_back({polygon[0], polygon[1], polygon[2]});
+}
+
+} // namespace
+
 std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style, std::span<const Vec3> at,
-                                           RegionOrigins* origins) {
+                                           RegionOrigins* origins, std::span<const float> gaps) {
   const QuadMesh& m = d.quads;
   if (at.size() != m.positions.size())
     throw std::invalid_argument("duotone_regions: " + std::to_string(at.size()) + " corners for a duotone of " +
                                 std::to_string(m.positions.size()));
+  const bool apart = !gaps.empty();
+  if (apart && gaps.size() != 5 * size_t(m.num_quads()))
+    throw std::invalid_argument("duotone_regions: " + std::to_string(gaps.size()) + " gaps for " +
+                                std::to_string(m.num_quads()) + " quads");
+  // Points of a quad: 32 (8 + 2 * 7 + 1) at most, or with the regions apart, each curve
+  // and side point twice.
+  const int64_t stride = apart ? 64 : 32;
   std::array<std::vector<LocalPoint>, 4> curve;
   for (int a = 0; a < 4; ++a) curve[size_t(a)] = corner_curve(style, a);
   std::array<PolygonMesh, 2> out;
@@ -478,53 +518,117 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style, st
   std::vector<LocalPoint> pts;
   std::array<std::vector<int32_t>, 2> local_vertex;
   std::vector<int> piece, half;
+  std::vector<std::array<int, 3>> ears;
   for (int32_t q = 0; q < m.num_quads(); ++q) {
     const auto& c = m.quads[size_t(q)];
     const auto ap = apexes(d, q);
-    // Local points: corners 0..3, midpoints 4..7, the interior curve points of each apex
-    // (from side a-1's midpoint towards side a's), then the quad's centre.
+    // Local points: corners 0..3, side points 4..7 (the midpoints; apart, moved towards
+    // the apex on the side), the interior curve points of each apex (from side a-1's
+    // midpoint towards side a's), the quad's centre; apart, then the band's own side
+    // points (moved away from the apex) and curves.
+    const auto gap = [&](int k) { return apart ? double(gaps[5 * size_t(q) + size_t(k)]) : 0.0; };
+    const auto is_apex = [&](int k) { return k == ap[0] || k == ap[1]; };
+    const auto along_side = [&](int k, bool towards_apex) {
+      const int w = towards_apex == is_apex(k) ? k : (k + 1) & 3, o = w == k ? (k + 1) & 3 : k; // from w, 0.5 - gap towards o
+      const double f = 0.5 - gap(k);
+      return LocalPoint{kCorner[size_t(w)][0] + f * (kCorner[size_t(o)][0] - kCorner[size_t(w)][0]),
+                        kCorner[size_t(w)][1] + f * (kCorner[size_t(o)][1] - kCorner[size_t(w)][1])};
+    };
     pts.assign(8, {});
     for (int k = 0; k < 4; ++k) {
       pts[size_t(k)] = {kCorner[size_t(k)][0], kCorner[size_t(k)][1]};
-      pts[size_t(4 + k)] = {(kCorner[size_t(k)][0] + kCorner[size_t((k + 1) & 3)][0]) / 2,
-                            (kCorner[size_t(k)][1] + kCorner[size_t((k + 1) & 3)][1]) / 2};
+      pts[size_t(4 + k)] = along_side(k, true);
     }
-    std::array<int, 2> curve_first{};
+    // A curve point scaled about its apex so that the curve lies `g` further in (towards
+    // the apex, g < 0: away), g moving from side a-1's gap to side a's along it, and at
+    // least the quad's inner gap.
+    const auto add_points = [&](int a, double sign) {
+      const std::vector<LocalPoint>& points = curve[size_t(a)];
+      const auto& corner = kCorner[size_t(a)];
+      for (size_t i = 0; i < points.size(); ++i) {
+        if (!apart) { // the curve itself, exactly
+          pts.push_back(points[i]);
+          continue;
+        }
+        const double w = double(i + 1) / double(points.size() + 1);
+        const double f = 1 - sign * 2 * std::max((1 - w) * gap((a + 3) & 3) + w * gap(a), gap(4));
+        pts.push_back({corner[0] + f * (points[i].s - corner[0]), corner[1] + f * (points[i].t - corner[1])});
+      }
+    };
+    std::array<int, 2> curve_first{}, band_first{};
     for (int j = 0; j < 2 && ap[size_t(j)] >= 0; ++j) {
       curve_first[size_t(j)] = int(pts.size());
-      pts.insert(pts.end(), curve[size_t(ap[size_t(j)])].begin(), curve[size_t(ap[size_t(j)])].end());
+      add_points(ap[size_t(j)], 1);
     }
     const int centre = int(pts.size());
     pts.push_back({0.5, 0.5});
+    std::array<int, 4> band_side{4, 5, 6, 7};
+    band_first = curve_first;
+    if (apart) {
+      for (int k = 0; k < 4; ++k) {
+        band_side[size_t(k)] = int(pts.size());
+        pts.push_back(along_side(k, false));
+      }
+      for (int j = 0; j < 2 && ap[size_t(j)] >= 0; ++j) {
+        band_first[size_t(j)] = int(pts.size());
+        add_points(ap[size_t(j)], -1);
+      }
+    }
+    const auto side_of = [&](int p) {
+      if (p >= 4 && p < 8) return p - 4;
+      for (int k = 0; k < 4 && apart; ++k)
+        if (p == band_side[size_t(k)]) return k;
+      return -1;
+    };
     for (auto& v : local_vertex) v.assign(pts.size(), -1);
     auto vertex = [&](int r, int p) -> int32_t {
       int32_t& id = local_vertex[size_t(r)][size_t(p)];
       if (id >= 0) return id;
-      int32_t* shared = p < 4 ? &corner_vertex[size_t(r)][size_t(c[size_t(p)])]
-                      : p < 8 ? &side_vertex[size_t(r)][size_t(side_key(m, q, p - 4))]
-                              : nullptr;
+      const int side = side_of(p);
+      int32_t* shared = p < 4       ? &corner_vertex[size_t(r)][size_t(c[size_t(p)])]
+                        : side >= 0 ? &side_vertex[size_t(r)][size_t(side_key(m, q, side))]
+                                    : nullptr;
       if (shared && *shared >= 0) return id = *shared;
       id = out[size_t(r)].num_vertices();
-      // A quad has at most 8 + 2 * 7 + 1 points (corners, midpoints, two arcs, centre).
+      // Apart, the regions' side points differ: the second's are numbered after the
+      // quads' points.
+      const int64_t points = int64_t(m.positions.size()), sides = 4 * int64_t(m.num_quads());
       if (origins)
-        origins->vertex_point[size_t(r)].push_back(p < 4   ? int64_t(c[size_t(p)])
-                                                   : p < 8 ? int64_t(m.positions.size()) + side_key(m, q, p - 4)
-                                                           : int64_t(m.positions.size()) + 4 * int64_t(m.num_quads()) + 32 * int64_t(q) + p);
-      // A half quad's centre halves its boundary edge.
-      out[size_t(r)].positions.push_back(p < 4                      ? at[size_t(c[size_t(p)])]
-                                         : p < 8                    ? side_midpoint(m, at, q, p - 4)
-                                         : p == centre && m.is_half(q) ? midpoint(at[size_t(c[0])], at[size_t(c[2])])
-                                                                    : surface_point(m, at, q, pts[size_t(p)].s, pts[size_t(p)].t));
+        origins->vertex_point[size_t(r)].push_back(p < 4       ? int64_t(c[size_t(p)])
+                                                   : side >= 0 ? points + side_key(m, q, side) + (apart && r == 1 ? sides + stride * sides / 4 : 0)
+                                                               : points + sides + stride * int64_t(q) + p);
+      // A half quad's centre halves its boundary edge. A side point is placed from the
+      // side's corners alone, so that both quads on it place it alike: the midpoint, or
+      // apart, the gap from it towards the corner of the region's colour.
+      Vec3 position;
+      if (p < 4) {
+        position = at[size_t(c[size_t(p)])];
+      } else if (side >= 0 && !apart) {
+        position = side_midpoint(m, at, q, side);
+      } else if (side >= 0) {
+        int32_t w = c[size_t(side)], o = c[size_t((side + 1) & 3)];
+        if (d.color[size_t(w)] != r) std::swap(w, o);
+        const Vec3d from = to_double(at[size_t(w)]);
+        position = to_float(from + (to_double(at[size_t(o)]) - from) * (0.5 - gap(side)));
+      } else if (p == centre && m.is_half(q)) {
+        position = midpoint(at[size_t(c[0])], at[size_t(c[2])]);
+      } else {
+        position = surface_point(m, at, q, pts[size_t(p)].s, pts[size_t(p)].t);
+      }
+      out[size_t(r)].positions.push_back(position);
       if (shared) *shared = id;
       return id;
     };
-    // The curve around apex ap[j] from side a-1's midpoint to side a's, or back.
-    auto add_curve = [&](int j, bool backwards) {
+    // The curve around apex ap[j] from side a-1's midpoint to side a's, or back: the
+    // corner piece's or, apart, the band's own.
+    auto add_curve = [&](int j, bool backwards, bool band = false) {
       const int a = ap[size_t(j)];
       const int count = int(curve[size_t(a)].size());
-      if (!backwards) piece.push_back(4 + ((a + 3) & 3));
-      for (int i = 0; i < count; ++i) piece.push_back(curve_first[size_t(j)] + (backwards ? count - 1 - i : i));
-      if (backwards) piece.push_back(4 + ((a + 3) & 3));
+      const int first = band ? band_first[size_t(j)] : curve_first[size_t(j)];
+      const int start = band ? band_side[size_t((a + 3) & 3)] : 4 + ((a + 3) & 3);
+      if (!backwards) piece.push_back(start);
+      for (int i = 0; i < count; ++i) piece.push_back(first + (backwards ? count - 1 - i : i));
+      if (backwards) piece.push_back(start);
     };
     // Splits the piece at the fold (its points there are corners 0 and 2 or curve points
     // placed on it) and fans each half: a corner piece from its corner (a quarter disc,
@@ -549,6 +653,13 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style, st
           for (size_t i = 1; i + 1 < n; ++i) face(half[0], half[i], half[i + 1]);
           continue;
         }
+        // Apart, the band's curves lie further out than the tangents through the centre.
+        if (apart) {
+          ears.clear();
+          clip_ears(half, pts, ears);
+          for (const auto& [a, b, cc] : ears) face(a, b, cc);
+          continue;
+        }
         size_t fold = 0; // half[fold] and the point after it lie on the fold
         auto on_fold = [&](int p) { return pts[size_t(p)].s == pts[size_t(p)].t; };
         while (fold < n && !(on_fold(half[fold]) && on_fold(half[(fold + 1) % n]))) ++fold;
@@ -564,21 +675,83 @@ std::array<PolygonMesh, 2> duotone_regions(const Duotone& d, TileStyle style, st
     }
     if (m.is_half(q)) {
       piece.assign({0, 2});
-      add_curve(0, false);
-      piece.push_back(4 + 3);
+      add_curve(0, false, true);
+      piece.push_back(band_side[3]);
       emit_piece(d.color[size_t(c[0])], true);
     } else {
       const int a = ap[0];
       piece.assign({(a + 1) & 3});
-      add_curve(1, false);
-      piece.push_back(4 + ((a + 2) & 3));
+      add_curve(1, false, true);
+      piece.push_back(band_side[size_t((a + 2) & 3)]);
       piece.push_back((a + 3) & 3);
-      add_curve(0, false);
-      piece.push_back(4 + a);
+      add_curve(0, false, true);
+      piece.push_back(band_side[size_t(a)]);
       emit_piece(d.color[size_t(c[size_t((a + 1) & 3)])], true);
     }
   }
   return out;
+}
+
+namespace {
+
+// The shortest a unit step of a quad half's square maps to (the half's Jacobian's least
+// singular value): its edges e1, e2 are the images of the square's two directions.
+double least_stretch(Vec3d e1, Vec3d e2) {
+  const double a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
+  return std::sqrt(std::max(0.0, (a + c) / 2 - std::hypot((a - c) / 2, b)));
+}
+
+} // namespace
+
+std::vector<float> duotone_gaps(const Duotone& d, TileStyle style, std::span<const Vec3> outer, std::span<const Vec3> inner,
+                                double clearance) {
+  const QuadMesh& m = d.quads;
+  if (outer.size() != m.positions.size() || inner.size() != m.positions.size())
+    throw std::invalid_argument("duotone_gaps: corners not one per vertex of the duotone's quads");
+  std::vector<float> gaps(5 * size_t(m.num_quads()), 0);
+  const auto need = [&](int32_t q, int k, double gap) {
+    float& g = gaps[5 * size_t(q) + size_t(k)];
+    g = std::max(g, float(gap));
+  };
+  std::vector<LocalPoint> line;
+  for (int32_t q = 0; q < m.num_quads(); ++q) {
+    const auto& c = m.quads[size_t(q)];
+    const auto ap = apexes(d, q);
+    for (const std::span<const Vec3> at : {outer, inner}) {
+      const auto corner = [&](int k) { return to_double(at[size_t(c[size_t(k)])]); };
+      const auto on = [&](LocalPoint x) { return to_double(surface_point(m, at, q, x.s, x.t)); };
+      double least = least_stretch(corner(2) - corner(3), corner(3) - corner(0));
+      if (c[1] >= 0) least = std::min(least, least_stretch(corner(1) - corner(0), corner(2) - corner(1)));
+      need(q, 4, clearance / 2 / least);
+      // A side's point moves along the side: the curve leaving it moves by that times the
+      // sine of the angle between them.
+      for (int j = 0; j < 2 && ap[size_t(j)] >= 0; ++j) {
+        const int a = ap[size_t(j)];
+        const auto mid = [&](int k) {
+          return LocalPoint{(kCorner[size_t(k)][0] + kCorner[size_t((k + 1) & 3)][0]) / 2,
+                            (kCorner[size_t(k)][1] + kCorner[size_t((k + 1) & 3)][1]) / 2};
+        };
+        line.assign(1, mid((a + 3) & 3));
+        const std::vector<LocalPoint> points = corner_curve(style, a);
+        line.insert(line.end(), points.begin(), points.end());
+        line.push_back(mid(a));
+        for (const auto& [k, end, inward] : {std::tuple{(a + 3) & 3, size_t(0), size_t(1)}, std::tuple{a, line.size() - 1, line.size() - 2}}) {
+          const Vec3d side = corner((k + 1) & 3) - corner(k), leaving = on(line[inward]) - on(line[end]);
+          const double sine = norm(cross(side, leaving)) / (norm(side) * norm(leaving));
+          need(q, k, clearance / 2 / (norm(side) * std::max(sine, 0.05)));
+        }
+      }
+    }
+  }
+  // Both quads on a side take the wider.
+  for (int32_t q = 0; q < m.num_quads(); ++q)
+    for (int k = 0; k < 4; ++k)
+      if (const int32_t n = m.neighbors[size_t(q)][size_t(k)]; n >= 0) {
+        float& mine = gaps[5 * size_t(q) + size_t(k)];
+        float& theirs = gaps[5 * size_t(n / 4) + size_t(n % 4)];
+        mine = theirs = std::max(mine, theirs);
+      }
+  return gaps;
 }
 
 } // namespace meander

@@ -170,6 +170,7 @@ void orient(Surface& s, const std::vector<Side>& sides) {
 // The quads' corners: where they are, which way is out, and which corners neighbour.
 struct Corners {
   std::vector<Vec3d> normal;        // unit, outward (zero for a corner of no quad)
+  std::vector<uint8_t> inward;      // per quad: its corners go round inward
   std::vector<Triangle> halves;     // each quad's two halves either side of its 0-2 fold, outward
   std::vector<int32_t> start, next; // neighbours along the halves' sides (CSR)
 };
@@ -190,6 +191,8 @@ Corners corners_of(const QuadMesh& m, const Surface& s) {
   }
   Corners k;
   k.normal.assign(m.positions.size(), Vec3d{});
+  k.inward.resize(nq);
+  for (size_t q = 0; q < nq; ++q) k.inward[q] = facing[q] < 0;
   std::vector<std::pair<int32_t, int32_t>> edges;
   for (size_t q = 0; q < nq; ++q) {
     const auto& c = m.quads[q];
@@ -223,10 +226,10 @@ Corners corners_of(const QuadMesh& m, const Surface& s) {
 // Distances to the surface (CGAL's AABB tree; its queries are safe to run in parallel).
 class Distance {
 public:
-  explicit Distance(const Surface& s) {
-    triangles_.reserve(s.triangles.size());
-    for (const Triangle& t : s.triangles) {
-      const auto point = [&](int32_t v) { return K::Point_3(s.positions[size_t(v)].x, s.positions[size_t(v)].y, s.positions[size_t(v)].z); };
+  Distance(std::span<const Vec3> positions, std::span<const Triangle> triangles) {
+    triangles_.reserve(triangles.size());
+    for (const Triangle& t : triangles) {
+      const auto point = [&](int32_t v) { return K::Point_3(positions[size_t(v)].x, positions[size_t(v)].y, positions[size_t(v)].z); };
       triangles_.emplace_back(point(t[0]), point(t[1]), point(t[2]));
     }
     tree_.rebuild(triangles_.begin(), triangles_.end());
@@ -247,9 +250,10 @@ private:
 
 // How far each corner moves in along its normal: until it lies `wall` from the surface,
 // or, in a part thinner than two walls, to 0.45 of the way across (where its distance
-// to the surface stops growing: past the middle). In steps of an eighth of the wall, up
+// to the surface stops growing: past the middle), and no nearer the middle than half
+// the `gap` the insides must keep (the clearance). In steps of an eighth of the wall, up
 // to 4 walls (a sharp rim moves in further than the faces beside it).
-std::vector<double> march_inward(const QuadMesh& m, const Corners& k, const Distance& distance, double wall) {
+std::vector<double> march_inward(const QuadMesh& m, const Corners& k, const Distance& distance, double wall, double gap) {
   std::vector<double> along(m.positions.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, along.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t v = r.begin(); v < r.end(); ++v) {
@@ -265,7 +269,7 @@ std::vector<double> march_inward(const QuadMesh& m, const Corners& k, const Dist
           break;
         }
         if (d <= before) {
-          along[v] = 0.9 * (i - 1) * step;
+          along[v] = std::max(0.0, std::min(0.9 * (i - 1) * step, (i - 1) * step - gap / 2));
           break;
         }
         before = d;
@@ -384,11 +388,79 @@ PolygonMesh solid_of(const Surface& s, const std::vector<Side>& sides, const std
   return solid;
 }
 
+// The solids of the two regions drawn apart by `gaps` (duotone_regions), the inside at
+// `inner` (per corner), each turned outward as its quad, with its own walls; their least
+// distance apart (from a corner or side midpoint of either's faces to the other).
+// Returns the quads of the faces that come nearer the other solid than `near`. Throws TopologyError for a solid that
+// crosses itself.
+std::vector<int32_t> draw_apart(SplitShell& out, const Duotone& duotone, TileStyle style, const Corners& corners,
+                                std::span<const Vec3> inner, std::span<const float> gaps, double near) {
+  const QuadMesh& m = duotone.quads;
+  RegionOrigins origins;
+  Surface a = weld(duotone_regions(duotone, style, m.positions, &origins, gaps), origins);
+  for (size_t f = 0; f < a.triangles.size(); ++f)
+    if (corners.inward[size_t(a.quad[f])]) std::swap(a.triangles[f][1], a.triangles[f][2]);
+  const std::vector<Side> sides = sides_of(a);
+  const std::vector<Vec3> inside = welded_positions(a, duotone_regions(duotone, style, inner, nullptr, gaps));
+  std::array<std::vector<int32_t>, 2> from;
+  for (int k = 0; k < 2; ++k) {
+    std::vector<uint8_t> region(a.triangles.size());
+    for (size_t f = 0; f < region.size(); ++f) region[f] = a.region[f] == k;
+    out.solids[size_t(k)] = solid_of(a, sides, inside, region, from[size_t(k)]);
+    if (const std::vector<int32_t> crossing = self_intersecting_faces(out.solids[size_t(k)]); !crossing.empty())
+      throw TopologyError("shell: a piece drawn back by the clearance crosses itself near " +
+                          place(a.positions[size_t(a.triangles[size_t(from[size_t(k)][size_t(crossing[0])])][0])]) +
+                          " (a smaller --clearance or a coarser --spacing may not)");
+  }
+  out.apart = INFINITY;
+  std::vector<int32_t> quads;
+  for (int k = 0; k < 2; ++k) {
+    const PolygonMesh& solid = out.solids[size_t(k)];
+    const PolygonMesh& other = out.solids[size_t(1 - k)];
+    std::vector<Triangle> triangles;
+    for (int32_t f = 0; f < other.num_faces(); ++f) triangles.push_back({other.face(f)[0], other.face(f)[1], other.face(f)[2]});
+    const Distance to_other(other.positions, triangles);
+    // Each face's corners and the midpoints of its sides (where two slanted walls come
+    // nearer than their corners do).
+    for (int32_t f = 0; f < solid.num_faces(); ++f) {
+      const std::span<const int32_t> t = solid.face(f);
+      bool close = false;
+      for (size_t i = 0; i < 3; ++i) {
+        const Vec3d p = to_double(solid.positions[size_t(t[i])]), q = to_double(solid.positions[size_t(t[(i + 1) % 3])]);
+        for (const Vec3d x : {p, (p + q) * 0.5}) {
+          const double d = to_other(x);
+          if (d < out.apart) out.apart = d, out.apart_at = to_float(x);
+          close = close || d < near;
+        }
+      }
+      if (close) quads.push_back(a.quad[size_t(from[size_t(k)][size_t(f)])]);
+    }
+  }
+  std::sort(quads.begin(), quads.end());
+  quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
+  return quads;
+}
+
+// Widens the gaps of these quads by half (a side's on both quads on it); false where one
+// would pass 0.2.
+bool widen(std::vector<float>& gaps, const QuadMesh& m, std::span<const int32_t> quads) {
+  for (const int32_t q : quads)
+    for (int k = 0; k < 5; ++k) {
+      const float wider = 1.5f * gaps[5 * size_t(q) + size_t(k)];
+      if (wider > 0.2f) return false;
+      gaps[5 * size_t(q) + size_t(k)] = wider;
+      if (const int32_t n = k < 4 ? m.neighbors[size_t(q)][size_t(k)] : -1; n >= 0) gaps[5 * size_t(n / 4) + size_t(n % 4)] = wider;
+    }
+  return true;
+}
+
 } // namespace
 
 SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options) {
   const double h = options.thickness;
   if (!(h > 0) || !std::isfinite(h)) throw ParameterError("shell", " must be a positive number (the wall's thickness)");
+  if (!(options.clearance >= 0) || !std::isfinite(options.clearance))
+    throw ParameterError("clearance", " must be a number, at least 0 (the gap between the two pieces)");
   if (!(options.min_thickness >= 0) || options.min_thickness > h)
     throw ParameterError("shell", " (" + std::to_string(h) + ") is thinner than the thinnest wall the printer makes (" +
                                       std::to_string(options.min_thickness) + ")");
@@ -409,8 +481,8 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
   }
   const Corners corners = corners_of(m, s);
 
-  const Distance distance(s);
-  std::vector<Vec3d> inside = settle(m, corners, distance, march_inward(m, corners, distance, h), h);
+  const Distance distance(s.positions, s.triangles);
+  std::vector<Vec3d> inside = settle(m, corners, distance, march_inward(m, corners, distance, h, options.clearance), h);
   unfold(inside, m, corners);
 
   SplitShell out;
@@ -450,6 +522,29 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
     for (size_t v = 0; v < inside.size(); ++v)
       if (tangled[v]) draw_in(inside, m, v, tangled[v] & 1 ? 0.5 : 0.2);
     unfold(inside, m, corners);
+  }
+  // Apart: the same inside, each region drawn back from the cut on both surfaces. Where
+  // the wall slants (the inside sheared against the outside) a piece's edge comes nearer
+  // the other's wall: the gaps there widen, a few times, until the pieces are 0.45 of
+  // the clearance apart everywhere.
+  if (options.clearance > 0) {
+    const std::vector<Vec3> at_inside = to_floats(inside);
+    std::vector<float> gaps = duotone_gaps(duotone, style, m.positions, at_inside, options.clearance);
+    if (const auto widest = std::max_element(gaps.begin(), gaps.end()); *widest > 0.2f) {
+      const double most = 0.2 / *widest * options.clearance;
+      throw ParameterError("clearance", " (" + std::to_string(options.clearance) + ") is too wide for the quads near " +
+                                            place(m.positions[size_t(m.quads[size_t((widest - gaps.begin()) / 5)][0])]) +
+                                            " (a fifth of their size, where the curve meets their sides at a slant): at most " +
+                                            std::to_string(most) + " here, or a coarser --spacing");
+    }
+    for (int round = 0;; ++round) {
+      const std::vector<int32_t> near = draw_apart(out, duotone, style, corners, at_inside, gaps, 0.45 * options.clearance);
+      if (near.empty()) break;
+      if (round == 4 || !widen(gaps, m, near))
+        throw TopologyError("shell: the pieces come within " + std::to_string(out.apart) + " of each other near " +
+                            place(out.apart_at) + ", less than 0.45 of the clearance, where the wall slants too far " +
+                            "to draw them further apart (a smaller --clearance or a coarser --spacing may not)");
+    }
   }
 
   for (int k = 0; k < 2; ++k) {
