@@ -72,7 +72,8 @@ def duotone(mesh: Mesh, *, strict: bool = False, max_faces: int = 0, progress: P
             tiles: Literal["truchet", "outline", "triangles", "stripes", "dots"] = "truchet", texture_size: int = 1024,
             subdivide: int = 0) -> tuple[Float32Array, Int32Array, Float32Array, npt.NDArray[np.uint8], Curves]: ...
 def duotone_print(mesh: Mesh, *, strict: bool = False, max_faces: int = 0, progress: Progress | None = None,
-                  shell: Length, min_thickness: Length = 0, **duotone_parameters: Any) -> tuple[list[Mesh], str]: ...
+                  shell: Length, min_thickness: Length = 0, clearance: Length = 0,
+                  **duotone_parameters: Any) -> tuple[list[Mesh], str]: ...
 
 def draw(what: Mesh | Curves | Float32Array, *, occluder: Mesh | None = None, view: str = "iso", fit: bool = False,
          camera: tuple[Sequence[float], Sequence[float], Sequence[float], float] | None = None, paper: str = "A4", landscape: bool = False, margin: float | str = 10.0, pen: float | str = 0.3,

@@ -201,6 +201,11 @@ def test_a_two_colour_print_is_the_command_lines(shared, cli, tmp_path):
         meander.duotone(meander.read(source), shell=1)
     with pytest.raises(ValueError, match="shell"):
         meander.duotone_print(meander.read(source))
+    # With a clearance, two pieces to print apart: the summary says how far apart.
+    (first, second), summary = meander.duotone_print(meander.read(source), clearance="0.2mm", **args)
+    assert "apart" in summary and "clearance 0.2" in summary
+    with pytest.raises(ValueError, match="clearance"):
+        meander.duotone(meander.read(source), clearance=0.2)
 
 
 def test_a_duotone_has_its_texture_and_coordinates_and_its_curve(sphere, tmp_path):
