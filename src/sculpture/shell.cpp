@@ -391,8 +391,8 @@ PolygonMesh solid_of(const Surface& s, const std::vector<Side>& sides, const std
 // The solids of the two regions drawn apart by `gaps` (duotone_regions), the inside at
 // `inner` (per corner), each turned outward as its quad, with its own walls; their least
 // distance apart (from a corner or side midpoint of either's faces to the other).
-// Returns the quads of the faces that come nearer the other solid than `near`. Throws TopologyError for a solid that
-// crosses itself.
+// Returns the quads of the faces that come nearer the other solid than `near`. Throws
+// TopologyError for a solid that crosses itself.
 std::vector<int32_t> draw_apart(SplitShell& out, const Duotone& duotone, TileStyle style, const Corners& corners,
                                 std::span<const Vec3> inner, std::span<const float> gaps, double near) {
   const QuadMesh& m = duotone.quads;

@@ -12,9 +12,9 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
-#include <array>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -146,7 +146,7 @@ std::vector<SurfaceMesh::Face_index> faces_near(const SurfaceMesh& surface, cons
 }
 
 // Rounded to floats, the thin triangles along the crossing of two surfaces that meet at
-// a small angle may turn over and cross their neighbours (a few a thousand bridges; the
+// a small angle may turn over and cross their neighbours (a few in a thousand bridges; the
 // corefinement in double crosses nothing): the shortest edge of each face found
 // crossing another there is collapsed into its end that came from the inputs (its
 // position is kept exactly), a few rounds while any are found.
