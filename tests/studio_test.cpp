@@ -383,6 +383,8 @@ TEST(Studio, ADuotoneWithAShellIsATwoColourPrint) {
   ASSERT_EQ(request.params.duotone.shell, 1.5);
   const StudioResult painted = make_studio_result(surface, request.params);
   ASSERT_TRUE(painted.shell.has_value());
+  EXPECT_GE(studio_result_size(surface, request.params),
+            painted.triangles + painted.shell->solids[0].num_faces() + painted.shell->solids[1].num_faces());
   const auto stats = nlohmann::json::parse(studio_stats_json(painted));
   ASSERT_EQ(stats["shell"]["volumes"].size(), 2u);
   EXPECT_GT(stats["shell"]["volumes"][0].get<double>(), 0);

@@ -297,7 +297,11 @@ int64_t result_size(const StudioSurface& surface, const StudioParams& params) {
   if (params.mode == StudioMode::duotone) {
     const TileOptions& tiles = params.duotone.tiles;
     const int64_t texture = int64_t(tiles.texture_size) * tiles.texture_size / 2; // the atlas
-    return 4 * quads(params.duotone.duotone.quadrangulation) * (int64_t(1) << (2 * params.duotone.subdivide)) + texture;
+    // A shell's two solids: a quad's tiles outside and inside, and the walls along its
+    // cut (arcs: 136 triangles a quad for the two, measured on either quadrangulation).
+    const int64_t shell = params.duotone.shell && !params.preview ? 160 : 0;
+    const int64_t q = quads(params.duotone.duotone.quadrangulation);
+    return 4 * q * (int64_t(1) << (2 * params.duotone.subdivide)) + shell * q + texture;
   }
   const WireJob& wire = params.wire;
   int64_t cycle = 2 * quads(wire.curve.quadrangulation); // triangles the cycle visits
