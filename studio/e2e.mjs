@@ -404,6 +404,18 @@ try {
   check(print.enabled && print.zip && print.size > 10000 && print.row?.includes('2 solids'),
     `the Two-colour print download is their 3MF (${JSON.stringify({ ...print, shell: undefined })})`);
   await page.screenshot({ path: path.join(outputFolder, 'studio_e2e_print.png') });
+  // A gap between the pieces, to print them apart: the stats say how far apart they are.
+  await change(async () => {
+    await page.fill('#clearance', '0.1');
+    await page.press('#clearance', 'Enter');
+  });
+  const gap = await page.evaluate(() => ({ shell: window.studio.state.stats.shell,
+    row: [...document.querySelectorAll('#stats tr')].find((r) => r.querySelector('th').textContent === 'two-colour print')?.textContent }));
+  check(gap.shell?.apart >= 0.45 * 0.1 && gap.row?.includes('mm apart'), `a gap draws the pieces apart (${JSON.stringify(gap)})`);
+  await change(async () => {
+    await page.fill('#clearance', '0');
+    await page.press('#clearance', 'Enter');
+  });
   await change(() => page.uncheck('#shell-on'));
   check(await page.getAttribute('#downloads a[data-file="print.3mf"]', 'aria-disabled') === 'true', 'without the shell there is no print');
   await change(async () => {

@@ -379,8 +379,9 @@ TEST(Studio, BridgesComeWithTheFullConstantWire) {
 TEST(Studio, ADuotoneWithAShellIsATwoColourPrint) {
   const StudioSurface surface = demo_surface();
   const MakeRequest request = parse_make_request(
-      R"({"session": "x", "mode": "duotone", "model_size": "100mm", "shell": 1.5, "texture_size": 64})");
+      R"({"session": "x", "mode": "duotone", "model_size": "100mm", "shell": 1.5, "clearance": 0, "texture_size": 64})");
   ASSERT_EQ(request.params.duotone.shell, 1.5);
+  EXPECT_EQ(parse_make_request(R"({"session": "x", "mode": "duotone", "shell": 1.5, "clearance": 0.3})").params.duotone.clearance, 0.3);
   const StudioResult painted = make_studio_result(surface, request.params);
   ASSERT_TRUE(painted.shell.has_value());
   EXPECT_GE(studio_result_size(surface, request.params),
@@ -397,6 +398,7 @@ TEST(Studio, ADuotoneWithAShellIsATwoColourPrint) {
 
   StudioParams preview = request.params;
   preview.preview = true;
+  preview.duotone.clearance = 0.1; // a preview has no print, nor its gap
   const StudioResult quick = make_studio_result(surface, preview);
   EXPECT_FALSE(quick.shell.has_value());
   EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(quick)).contains("shell"));
@@ -782,6 +784,7 @@ TEST(Studio, APictureIsDrawnAsMeanderImageDrawsIt) {
   // A preview: the same line with at most 2 samples a segment.
   StudioParams preview = request.params;
   preview.preview = true;
+  preview.duotone.clearance = 0.1; // a preview has no print, nor its gap
   const StudioResult quick = make_studio_result(surface, preview);
   EXPECT_EQ(quick.params.image.curve.samples, 2);
   EXPECT_LT(quick.curve.curves.points.size(), result.curve.curves.points.size());

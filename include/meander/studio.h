@@ -135,8 +135,8 @@ struct StudioResult {
   double radius = 0;     // constant modes: the radius used (auto resolved)
   BridgePlan bridges;    // constant wire with bridges (not in a preview): where they are
   std::vector<uint8_t> bridge_faces; // and which faces of `mesh` are on them
-  // Duotone with a shell (not in a preview): the two-colour print, or why the surface
-  // could not be thickened (make_shell's TopologyError).
+  // Duotone with a shell (not in a preview): the two-colour print, or why it could not
+  // be made (make_shell's TopologyError or ParameterError: a wall or gap too wide).
   std::optional<SplitShell> shell;
   std::string shell_refusal;
   PrintabilityReport report; // of a wire or ribbon (self-intersections, no thickness)
@@ -177,7 +177,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
 // drawn as its ribbon) and (not for a preview, which has no report) watertight,
 // self_intersecting, volume, printable, bridges {count, longest_stretch, every_pass_tied}
 // (with bridges), for duotone quads, faces, notes, shell {volumes, below_floor_corners,
-// summary} or {refused} (with a shell), and for a
+// summary, apart (with a clearance)} or {refused} (with a shell), and for a
 // picture cells (of its quadtree), paper [width, height] in millimetres, pen_up_travel;
 // a picture's curve_length is its line's length on the sheet, in millimetres.
 std::string studio_stats_json(const StudioResult& result);

@@ -335,7 +335,7 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   if (mode != StudioMode::constant_wire || params.preview) params.wire.bridges.reset();
   if (!params.preview) return params;
   params.duotone.shell.reset(); // the two-colour print is the full result's
-  params.duotone.min_thickness = 0;
+  params.duotone.min_thickness = params.duotone.clearance = 0;
   params.image.curve.samples = std::min(params.image.curve.samples, 2);
   int& samples = params.wire.curve.curve.samples;
   samples = std::min(samples, 2);
@@ -417,11 +417,13 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
         paint_duotone(duotone, job, same_atlas ? previous->appearance.materials[0].texture : Texture{}, nullptr, progress);
     if (job.shell) {
       if (progress) progress->begin("shell");
-      // Where the surface cannot be thickened, the painted duotone is still shown, and
-      // the stats say why there is no print.
+      // Where the surface cannot be thickened, or not with this wall or gap, the painted
+      // duotone is still shown, and the stats say why there is no print.
       try {
         result.shell = make_shell(duotone, job);
       } catch (const TopologyError& e) {
+        result.shell_refusal = e.what();
+      } catch (const ParameterError& e) {
         result.shell_refusal = e.what();
       }
     }
@@ -524,10 +526,12 @@ std::string studio_stats_json(const StudioResult& result) {
       texture += hex;
     }
     stats["texture"] = texture + " " + std::to_string(tiles.texture_size);
-    if (result.shell)
+    if (result.shell) {
       stats["shell"] = {{"volumes", result.shell->volumes},
                         {"below_floor_corners", result.shell->below_floor_corners},
                         {"summary", shell_summary(*result.shell, result.params.duotone)}};
+      if (result.params.duotone.clearance > 0) stats["shell"]["apart"] = result.shell->apart;
+    }
     else if (!result.shell_refusal.empty())
       stats["shell"] = {{"refused", result.shell_refusal}};
   } else if (result.params.mode != StudioMode::curve) {

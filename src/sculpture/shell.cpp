@@ -441,16 +441,17 @@ std::vector<int32_t> draw_apart(SplitShell& out, const Duotone& duotone, TileSty
   return quads;
 }
 
-// Widens the gaps of these quads by half (a side's on both quads on it); false where one
-// would pass 0.2.
+// Widens the gaps of these quads by half, each once (a side's on both quads on it);
+// false where one would pass 0.2.
 bool widen(std::vector<float>& gaps, const QuadMesh& m, std::span<const int32_t> quads) {
+  std::vector<uint8_t> wider(gaps.size(), 0);
   for (const int32_t q : quads)
     for (int k = 0; k < 5; ++k) {
-      const float wider = 1.5f * gaps[5 * size_t(q) + size_t(k)];
-      if (wider > 0.2f) return false;
-      gaps[5 * size_t(q) + size_t(k)] = wider;
-      if (const int32_t n = k < 4 ? m.neighbors[size_t(q)][size_t(k)] : -1; n >= 0) gaps[5 * size_t(n / 4) + size_t(n % 4)] = wider;
+      wider[5 * size_t(q) + size_t(k)] = 1;
+      if (const int32_t n = k < 4 ? m.neighbors[size_t(q)][size_t(k)] : -1; n >= 0) wider[5 * size_t(n / 4) + size_t(n % 4)] = 1;
     }
+  for (size_t i = 0; i < gaps.size(); ++i)
+    if (wider[i] && (gaps[i] *= 1.5f) > 0.2f) return false;
   return true;
 }
 

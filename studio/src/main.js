@@ -627,6 +627,7 @@ function params() {
     subdivide: Number($('subdivide').value),
     // Printed, a shell's wall is in millimetres: the model needs its size first.
     shell: $('shell-on').checked && sized ? Number($('shell').value) : 'none',
+    clearance: $('shell-on').checked && sized ? Number($('clearance').value) : 0,
   };
 }
 
@@ -652,7 +653,8 @@ function showStats(stats) {
     // As `meander duotone --shell`: the two solids, or why the surface has no shell.
     if (stats.shell?.volumes) {
       const below = stats.shell.below_floor_corners > 0 ? `, the wall thinner than the floor at ${plural(stats.shell.below_floor_corners, 'corner', 'corners')}` : '';
-      rows.push(['two-colour print', `2 solids of ${stats.shell.volumes.map((v) => v.toPrecision(4)).join(' and ')} mm³${below}`]);
+      const apart = stats.shell.apart !== undefined ? `, at least ${stats.shell.apart.toPrecision(2)} mm apart` : '';
+      rows.push(['two-colour print', `2 solids of ${stats.shell.volumes.map((v) => v.toPrecision(4)).join(' and ')} mm³${apart}${below}`]);
     } else if (stats.shell?.refused) {
       rows.push(['two-colour print', `not made: ${stats.shell.refused}`]);
     }
@@ -724,7 +726,7 @@ for (const file of ['render.png', 'curve.svg']) {
 // Every control the settings are made of, as the URL and the local storage keep them.
 const settingIds = ['mode', 'model-size', 'spacing-on', 'spacing', 'branches-on', 'branches', 'quad', 'tree', 'seed', 'smooth',
   'samples', 'radius', 'radius-auto', 'sides', 'bridges-on', 'bridges', 'nozzle', 's', 't', 'thickness', 'levels', 'rule', 'color0', 'color1', 'tiles',
-  'texture-size', 'subdivide', 'shell-on', 'shell', 'surface', 'plotter', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
+  'texture-size', 'subdivide', 'shell-on', 'shell', 'clearance', 'surface', 'plotter', 'paper', 'margin', 'pen', 'line-spacing', 'max-spacing', 'gamma', 'invert'];
 const valueOf = (el) => (el.type === 'checkbox' ? (el.checked ? '1' : '0') : el.value);
 const defaults = Object.fromEntries(settingIds.map((id) => [id, valueOf($(id))]));
 function settings() {
@@ -920,7 +922,7 @@ function syncControls() {
   $('branches').disabled = !$('branches-on').checked;
   $('bridges').disabled = !$('bridges-on').checked;
   $('shell-on').disabled = modelSizeMillimetres() === null;
-  $('shell').disabled = !$('shell-on').checked || $('shell-on').disabled;
+  $('shell').disabled = $('clearance').disabled = !$('shell-on').checked || $('shell-on').disabled;
   for (const output of document.querySelectorAll('output[for]')) if (!output.id) output.textContent = $(output.htmlFor.value).value;
   showSpacing();
   showModeControls();
