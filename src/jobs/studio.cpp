@@ -531,9 +531,9 @@ std::string studio_stats_json(const StudioResult& result) {
                         {"below_floor_corners", result.shell->below_floor_corners},
                         {"summary", shell_summary(*result.shell, result.params.duotone)}};
       if (result.params.duotone.clearance > 0) stats["shell"]["apart"] = result.shell->apart;
-    }
-    else if (!result.shell_refusal.empty())
+    } else if (!result.shell_refusal.empty()) {
       stats["shell"] = {{"refused", result.shell_refusal}};
+    }
   } else if (result.params.mode != StudioMode::curve) {
     stats["vertices"] = result.mesh.num_vertices();
     stats["faces"] = result.mesh.num_faces();
