@@ -713,7 +713,19 @@ std::vector<float> duotone_gaps(const Duotone& d, TileStyle style, std::span<con
     float& g = gaps[5 * size_t(q) + size_t(k)];
     g = std::max(g, float(gap));
   };
-  std::vector<LocalPoint> line;
+  // The curve around each corner of the square, from side a-1's midpoint to side a's.
+  std::array<std::vector<LocalPoint>, 4> lines;
+  for (int a = 0; a < 4; ++a) {
+    const auto mid = [](int k) {
+      return LocalPoint{(kCorner[size_t(k)][0] + kCorner[size_t((k + 1) & 3)][0]) / 2,
+                        (kCorner[size_t(k)][1] + kCorner[size_t((k + 1) & 3)][1]) / 2};
+    };
+    std::vector<LocalPoint>& line = lines[size_t(a)];
+    line.assign(1, mid((a + 3) & 3));
+    const std::vector<LocalPoint> points = corner_curve(style, a);
+    line.insert(line.end(), points.begin(), points.end());
+    line.push_back(mid(a));
+  }
   for (int32_t q = 0; q < m.num_quads(); ++q) {
     const auto& c = m.quads[size_t(q)];
     const auto ap = apexes(d, q);
@@ -727,14 +739,7 @@ std::vector<float> duotone_gaps(const Duotone& d, TileStyle style, std::span<con
       // sine of the angle between them.
       for (int j = 0; j < 2 && ap[size_t(j)] >= 0; ++j) {
         const int a = ap[size_t(j)];
-        const auto mid = [&](int k) {
-          return LocalPoint{(kCorner[size_t(k)][0] + kCorner[size_t((k + 1) & 3)][0]) / 2,
-                            (kCorner[size_t(k)][1] + kCorner[size_t((k + 1) & 3)][1]) / 2};
-        };
-        line.assign(1, mid((a + 3) & 3));
-        const std::vector<LocalPoint> points = corner_curve(style, a);
-        line.insert(line.end(), points.begin(), points.end());
-        line.push_back(mid(a));
+        const std::vector<LocalPoint>& line = lines[size_t(a)];
         for (const auto& [k, end, inward] : {std::tuple{(a + 3) & 3, size_t(0), size_t(1)}, std::tuple{a, line.size() - 1, line.size() - 2}}) {
           const Vec3d side = corner((k + 1) & 3) - corner(k), leaving = on(line[inward]) - on(line[end]);
           const double sine = norm(cross(side, leaving)) / (norm(side) * norm(leaving));
