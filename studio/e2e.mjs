@@ -255,6 +255,14 @@ try {
     `moving s did not change the wire (bounding box moved by ${moved})`);
   check(after.stats.watertight === true && after.stats.self_intersecting === false, 'the variable wire is watertight and clear');
 
+  step('bridges on the variable wire');
+  // The same slider ties the slabs of the variable wire into one solid.
+  await change(() => page.check('#bridges-on'));
+  const slabs = await page.evaluate(() => window.studio.state.stats);
+  check(slabs.bridges?.count > 0 && slabs.watertight === true && slabs.self_intersecting === false,
+    `a bridged variable wire has bridges and is one clear solid (${JSON.stringify(slabs)})`);
+  await change(() => page.uncheck('#bridges-on'));
+
   step('the download');
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('a[data-file="result.stl"]')]);
   const stlPath = path.join(outputFolder, 'studio_e2e.stl');

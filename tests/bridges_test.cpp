@@ -6,6 +6,7 @@
 
 #include "meander/bridges.h"
 #include "meander/check.h"
+#include "meander/closest_points.h"
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/jobs.h"
@@ -124,6 +125,23 @@ TEST(Bridges, GoBetweenNeighbouringPassesClearOfTheRestAndSpreadAlongTheCurve) {
   }
 }
 
+// One solid, judged by CGAL: closed, outward, clear of itself, one component with
+// handles (a free loop is a torus), the struts adding to the free wire's volume, less
+// than `most` times it.
+void expect_one_rigid_solid(const PolygonMesh& bridged, const PolygonMesh& free, double most) {
+  const MeshReport shape = inspect(bridged);
+  ASSERT_EQ(shape.components.size(), 1u);
+  EXPECT_LT(shape.components[0].euler_characteristic, 0);
+  const test::CgalVerdict cgal = test::cgal_judge(bridged);
+  ASSERT_TRUE(cgal.loaded);
+  EXPECT_TRUE(cgal.closed);
+  EXPECT_FALSE(cgal.self_intersecting);
+  EXPECT_TRUE(cgal.outward);
+  const double loop = test::cgal_judge(free).volume;
+  EXPECT_GT(cgal.volume, loop);
+  EXPECT_LT(cgal.volume, most * loop);
+}
+
 TEST(Bridges, MakeTheWireOneRigidSolid) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
@@ -136,18 +154,7 @@ TEST(Bridges, MakeTheWireOneRigidSolid) {
     EXPECT_TRUE(wire.bridges.one_piece);
     EXPECT_FALSE(wire.report.self_intersecting);
     EXPECT_TRUE(wire.report.watertight);
-    const MeshReport shape = inspect(wire.mesh);
-    ASSERT_EQ(shape.components.size(), 1u);
-    EXPECT_LT(shape.components[0].euler_characteristic, 0);
-    const test::CgalVerdict cgal = test::cgal_judge(wire.mesh);
-    ASSERT_TRUE(cgal.loaded);
-    EXPECT_TRUE(cgal.closed);
-    EXPECT_FALSE(cgal.self_intersecting);
-    EXPECT_TRUE(cgal.outward);
-    // The struts add to the tube's volume.
-    const double tube = test::cgal_judge(free.mesh).volume;
-    EXPECT_GT(cgal.volume, tube);
-    EXPECT_LT(cgal.volume, 1.5 * tube);
+    expect_one_rigid_solid(wire.mesh, free.mesh, 1.5);
   }
 }
 
@@ -168,20 +175,65 @@ TEST(Bridges, ManyBridgesStayClearOnceRoundedToFloats) {
 }
 
 TEST(Bridges, SameCurveSameWire) {
-  const WireJob job{.curve = {.spacing = 0.2}, .bridges = 0.8};
-  const CurveResult curve = make_curve(torus(1000), wire_curve_job(job));
-  const WireResult a = make_wire(curve, job);
-  std::vector<std::unique_ptr<char[]>> heap; // another heap: no order of addresses may count
-  for (int i = 0; i < 3000; ++i) heap.emplace_back(new char[size_t(16 + i * 37 % 300)]);
-  const WireResult b = make_wire(curve, job);
-  EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
-  EXPECT_TRUE(a.mesh.face_vertices == b.mesh.face_vertices);
+  for (const WireJob& job : {WireJob{.curve = {.spacing = 0.2}, .bridges = 0.8},
+                             WireJob{.curve = {.spacing = 0.2}, .method = WireMethod::variable, .bridges = 0.8, .levels = 0}}) {
+    const CurveResult curve = make_curve(torus(1000), wire_curve_job(job));
+    const WireResult a = make_wire(curve, job);
+    std::vector<std::unique_ptr<char[]>> heap; // another heap: no order of addresses may count
+    for (int i = 0; i < 3000; ++i) heap.emplace_back(new char[size_t(16 + i * 37 % 300)]);
+    const WireResult b = make_wire(curve, job);
+    EXPECT_FALSE(a.bridges.ends.empty());
+    EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
+    EXPECT_TRUE(a.mesh.face_vertices == b.mesh.face_vertices);
+  }
 }
 
-TEST(Bridges, RefuseRibbonsVariableWiresAndBadLengths) {
+// The variable wire is a slab thinner than it is wide: its struts are sized by the ball
+// inside the slab at their ends, and kept clear of the slabs beside them by their width.
+TEST(Bridges, MakeTheVariableWireOneRigidSolid) {
+  const Case shapes[] = {{"sphere", sphere(500), 0},
+                         {"torus", torus(500), 0},
+                         {"pretzel (genus 2)", genus_surface(2, 700), 0},
+                         {"genus 3", genus_surface(3, 900), 0},
+                         {"grid (a disc)", grid(300), 0}};
+  for (const Case& c : shapes) {
+    SCOPED_TRACE(c.name);
+    WireJob job{.method = WireMethod::variable, .levels = 1};
+    const CurveResult curve = make_curve(c.mesh, wire_curve_job(job));
+    const WireResult free = make_wire(curve, job);
+    // Passes about the covered area over the curve's length apart; a bridge every 4.
+    const Polylines centre = cycle_curves(curve.quads, curve.cycle, job.curve.curve);
+    double area = 0;
+    for (const auto& q : curve.quads.quads)
+      area += 0.5 * (norm(cross(curve.quads.positions[size_t(q[1])] - curve.quads.positions[size_t(q[0])],
+                                curve.quads.positions[size_t(q[2])] - curve.quads.positions[size_t(q[0])])) +
+                     norm(cross(curve.quads.positions[size_t(q[2])] - curve.quads.positions[size_t(q[0])],
+                                curve.quads.positions[size_t(q[3])] - curve.quads.positions[size_t(q[0])])));
+    job.bridges = 4 * area / total_length(centre);
+    const WireResult wire = make_wire(curve, job);
+    EXPECT_GT(wire.bridges.ends.size(), 2u);
+    EXPECT_TRUE(wire.bridges.every_pass_tied) << "longest stretch " << wire.bridges.longest_stretch << " of " << *job.bridges;
+    EXPECT_FALSE(wire.report.self_intersecting);
+    EXPECT_TRUE(wire.report.watertight);
+    // Each strut is thinner than the slab it starts in: its caps lie inside the wire.
+    ASSERT_EQ(wire.bridges.radii.size(), wire.bridges.ends.size());
+    const ClosestPoints slab(free.mesh);
+    for (size_t k = 0; k < wire.bridges.ends.size(); ++k)
+      for (const int32_t e : wire.bridges.ends[k]) {
+        const Vec3d p = to_double(centre.points[size_t(e)]);
+        const ClosestPoints::Hit hit = slab.closest_hit(p);
+        ASSERT_LT(dot(p - hit.point, hit.normal), 0) << "bridge " << k << " ends outside the wire";
+        ASSERT_LT(wire.bridges.radii[k], norm(p - hit.point)) << "bridge " << k << " is thicker than the slab";
+      }
+    expect_one_rigid_solid(wire.mesh, free.mesh, 1.2);
+  }
+}
+
+TEST(Bridges, RefuseRibbonsAndBadLengths) {
   const CurveResult curve = make_curve(torus(600), CurveJob{});
   EXPECT_THROW(make_wire(curve, WireJob{.shape = WireShape::ribbon, .bridges = 1.0}), ParameterError);
-  EXPECT_THROW(make_wire(curve, WireJob{.method = WireMethod::variable, .bridges = 1.0}), ParameterError);
+  EXPECT_THROW(make_wire(curve, WireJob{.method = WireMethod::variable, .shape = WireShape::ribbon, .bridges = 1.0}),
+               ParameterError);
   EXPECT_THROW(make_wire(curve, WireJob{.bridges = 0.0}), ParameterError);
   EXPECT_THROW(make_wire(curve, WireJob{.bridges = -1.0}), ParameterError);
   EXPECT_THROW(plan_bridges(curve.curves, {.max_stretch = 1, .radius = 0.1, .reach = 0.1}), ParameterError);
@@ -228,6 +280,30 @@ TEST(Bridges, TheCliSaysWhereTheyAreAndCgalAgrees) {
   ASSERT_EQ(info.status, 0) << info.text;
   EXPECT_TRUE(info.manifold) << info.text;
   EXPECT_EQ(info.parts, 1) << info.text; // one rigid piece
+}
+
+TEST(Bridges, TheVariableWireFromTheCliIsOnePiece) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const auto dir = test::output_dir();
+  const auto out = dir / "variable_bridged.stl";
+  const std::vector<std::string> args = {"wire", (test::shared_meshes() / "genus3hexa1.obj").string(), "--method", "variable",
+                                         "--levels", "1", "-o"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> all = args;
+    all.insert(all.end(), more.begin(), more.end());
+    return all;
+  };
+  const test::CommandResult r = test::run_cli(with({out.string(), "--bridges", "0.4"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("every pass is tied to the rest"), std::string::npos) << r.err;
+  const test::CommandResult free = test::run_cli(with({(dir / "variable_free.stl").string()}));
+  ASSERT_EQ(free.exit_code, 0) << free.err;
+  expect_one_rigid_solid(read_mesh(out), read_mesh(dir / "variable_free.stl"), 1.2);
+  MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
+  const test::SlicerInfo info = test::prusa_slicer_info(out);
+  ASSERT_EQ(info.status, 0) << info.text;
+  EXPECT_TRUE(info.manifold) << info.text;
+  EXPECT_EQ(info.parts, 1) << info.text;
 }
 
 } // namespace

@@ -5,6 +5,7 @@
 #include "meander/error.h"
 #include "meander/io.h"
 #include "meander/parameters.h"
+#include "meander/shapes.h"
 #include "meander/studio.h"
 
 #include <gtest/gtest.h>
@@ -129,6 +130,27 @@ TEST(Jobs, CliAndStudioMakeTheSameFiles) {
     const StudioResult result = make_studio_result(surface, parse_make_request(c.request).params);
     EXPECT_TRUE(studio_download(surface, result, c.file).bytes == test::read_file(c.cli[3]));
   }
+}
+
+// A variable wire follows the even mesh's flat faces, which cut below a curved input
+// between their corners: drawn half sunk in the input (which a curve made with a spacing
+// is moved onto), it was hidden over most of a pretzel at 6 mm of 100.
+TEST(Jobs, AVariableWireIsDrawnHalfSunkInTheSurfaceItFollows) {
+  const WireJob job{.curve = {.spacing = 0.3}, .method = WireMethod::variable, .levels = 1, .report = false};
+  const CurveResult curve = make_curve(make_shape("pretzel", 1600), wire_curve_job(job));
+  const WireResult wire = make_wire(curve, job);
+  const RenderOptions options{.width = 300, .height = 200, .view = parse_view("front"), .samples = 1};
+  const auto copper = [](const Image& image) {
+    int64_t n = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) n += image.rgba[i] > image.rgba[i + 2] + 40;
+    return n;
+  };
+  Scene alone;
+  alone.meshes.push_back({.mesh = wire.mesh, .color = wire_color});
+  // Alone, the wire's back shows between its front passes; sunk, only its front half.
+  const int64_t all = copper(render(alone, options)), shown = copper(render(wire_scene(wire.mesh, curve, job), options));
+  EXPECT_GT(shown, all / 3) << shown << " of " << all << " pixels";
+  EXPECT_LT(shown, all);
 }
 
 } // namespace

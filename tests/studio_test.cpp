@@ -351,22 +351,28 @@ TEST(Studio, PreviewIsTheQuickVersionWithoutAReport) {
 
 // Bridges are the constant wire's, made in the full result (their union costs several
 // times the wire): a preview, or another mode given the same settings, has none.
-TEST(Studio, BridgesComeWithTheFullConstantWire) {
+TEST(Studio, BridgesComeWithTheFullWires) {
   const StudioSurface surface = demo_surface();
+  for (const StudioMode mode : {StudioMode::constant_wire, StudioMode::variable_wire}) {
+    StudioParams params{.mode = mode};
+    params.wire.bridges = 1.0;
+    params.wire.levels = 1; // the page's
+    const StudioResult bridged = make_studio_result(surface, params);
+    EXPECT_GT(bridged.bridges.ends.size(), 100u);
+    EXPECT_TRUE(bridged.report.watertight);
+    EXPECT_FALSE(bridged.report.self_intersecting);
+    const auto stats = nlohmann::json::parse(studio_stats_json(bridged));
+    EXPECT_EQ(stats["bridges"]["count"], bridged.bridges.ends.size());
+    EXPECT_EQ(stats["bridges"]["every_pass_tied"], bridged.bridges.every_pass_tied);
+    EXPECT_LE(stats["bridges"]["longest_stretch"].get<double>(), 1.0 + 1e-9);
+  }
   StudioParams params{.mode = StudioMode::constant_wire};
   params.wire.bridges = 1.0;
-  const StudioResult bridged = make_studio_result(surface, params);
-  EXPECT_GT(bridged.bridges.ends.size(), 100u);
-  EXPECT_TRUE(bridged.report.watertight);
-  EXPECT_FALSE(bridged.report.self_intersecting);
-  const auto stats = nlohmann::json::parse(studio_stats_json(bridged));
-  EXPECT_EQ(stats["bridges"]["count"], bridged.bridges.ends.size());
-  EXPECT_EQ(stats["bridges"]["every_pass_tied"], bridged.bridges.every_pass_tied);
-  EXPECT_LE(stats["bridges"]["longest_stretch"].get<double>(), 1.0 + 1e-9);
-  for (const StudioMode mode : {StudioMode::constant_wire, StudioMode::constant_ribbon}) {
+  for (const StudioMode mode : {StudioMode::constant_wire, StudioMode::constant_ribbon, StudioMode::variable_wire,
+                                StudioMode::variable_ribbon}) {
     StudioParams other = params;
     other.mode = mode;
-    other.preview = mode == StudioMode::constant_wire;
+    other.preview = mode == StudioMode::constant_wire || mode == StudioMode::variable_wire;
     const StudioResult plain = make_studio_result(surface, other);
     EXPECT_TRUE(plain.bridges.ends.empty());
     EXPECT_FALSE(nlohmann::json::parse(studio_stats_json(plain)).contains("bridges"));

@@ -83,7 +83,7 @@ void run_wire(const WireArgs& a) {
   if (!a.report.empty()) write_bytes(a.report, wire_report_json(wire, job) + "\n");
   std::string picture_written;
   if (!a.png.empty()) {
-    picture_written = write_picture(wire_scene(std::move(wire.mesh), curve, job.shape, occluder_style(a.picture), wire.bridge_faces), picture,
+    picture_written = write_picture(wire_scene(std::move(wire.mesh), curve, job, occluder_style(a.picture), wire.bridge_faces), picture,
                                     a.picture, a.png);
     log.lap("render png");
   }

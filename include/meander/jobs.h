@@ -37,7 +37,7 @@ struct WireJob {
   WireShape shape = WireShape::wire;
   std::optional<double> radius; // constant: > 0, or none for the largest clear one
   int sides = 8;                // constant wire
-  // Constant wire: bridges (bridges.h) so that no stretch longer than this goes without one.
+  // Wire (not ribbon): bridges (bridges.h) so that no stretch longer than this goes without one.
   std::optional<double> bridges;
   double s = 0.6, t = 0.6, thickness = 0;
   int levels = 2;
@@ -204,12 +204,12 @@ inline constexpr Rgb bridge_color{0.2f, 0.42f, 0.62f};
 inline constexpr Rgb surface_color{0.82f, 0.82f, 0.82f};
 
 // The pictures, as in the paper's figures: the curve with the surface (the cycle's
-// triangles) hiding its back parts; a wire half sunk in that surface, drawn `occluder`;
-// a ribbon, which lies in the surface, alone; a duotone as painted. The faces
-// `bridge_faces` flags (WireResult::bridge_faces; none if empty) are drawn in the
-// bridges' colour.
+// triangles) hiding its back parts; a wire (of `job`'s shape and method) half sunk in
+// the surface it follows, drawn `occluder`; a ribbon, which lies in the surface, alone;
+// a duotone as painted. The faces `bridge_faces` flags (WireResult::bridge_faces; none
+// if empty) are drawn in the bridges' colour.
 Scene curve_scene(const CurveResult& curve, MeshStyle occluder = MeshStyle::hidden);
-Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder = MeshStyle::hidden,
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, const WireJob& job, MeshStyle occluder = MeshStyle::hidden,
                  std::span<const uint8_t> bridge_faces = {});
 Scene duotone_scene(const TexturedMesh& surface);
 

@@ -133,13 +133,13 @@ inline constexpr Parameter radius{.name = "radius",
                                   .choices = radius_choices,
                                   .length = true};
 inline constexpr Parameter bridges{.name = "bridges",
-                                   .help = "constant wire: fuse neighbouring passes with struts where they come closest, "
+                                   .help = "wire (constant or variable): fuse neighbouring passes with struts where they come closest, "
                                            "so that no stretch of the wire longer than this goes without one and the "
                                            "print is one rigid piece, in mesh units (millimetres with a model size; "
                                            "about 4 spacings; none: a free loop)",
                                    .choices = bridges_choices,
                                    .length = true};
-inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon", .min = 3, .max = 64};
+inline constexpr Parameter sides{.name = "sides", .help = "constant wire: sides of the swept polygon (and of the bridges' struts)", .min = 3, .max = 64};
 inline constexpr Parameter s{.name = "s", .help = "variable: trapezoid size across the curve (1 covers the surface)", .min = 0, .max = 1};
 inline constexpr Parameter t{.name = "t", .help = "variable: trapezoid size along the curve", .min = 0, .max = 1};
 inline constexpr Parameter thickness{.name = "thickness",

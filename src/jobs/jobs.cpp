@@ -1,5 +1,6 @@
 #include "meander/jobs.h"
 
+#include "meander/closest_points.h"
 #include "meander/connectivity.h"
 #include "meander/error.h"
 #include "meander/parameters.h"
@@ -9,6 +10,8 @@
 #include "stages.h"
 
 #include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -56,6 +59,67 @@ std::vector<uint8_t> beside_creases(const SolidUnion& united, double reach) {
   return near;
 }
 
+// Per point of a variable wire's centre line, the radius of the largest ball about it
+// inside the wire (0 where the point lies outside: the slab strays from the smooth
+// curve), and how far the wire reaches from it across the line (the slab's half width):
+// what its bridges are sized and kept clear by.
+struct SlabSize {
+  std::vector<double> inscribed, extent;
+  double radius = 0; // the largest extent
+};
+SlabSize slab_size(const PolygonMesh& wire, const Polylines& centre, double spacing) {
+  const size_t n = centre.points.size();
+  SlabSize size{.inscribed = std::vector<double>(n), .extent = std::vector<double>(n)};
+  const ClosestPoints surface(wire);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& range) {
+    ClosestPoints::Hit last;
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      const Vec3d p = to_double(centre.points[i]);
+      last = surface.closest_hit(p, last);
+      // Outward faces: a point inside lies behind the face it is nearest.
+      if (dot(p - last.point, last.normal) < 0) size.inscribed[i] = norm(p - last.point);
+    }
+  });
+  // Struts are as thick as the ball at their thinner end: none where the slab is less
+  // than a quarter of its usual thickness about the line (the line runs near its face;
+  // half left long stretches of a bunny's thin parts untied).
+  std::vector<double> balls;
+  for (const double b : size.inscribed)
+    if (b > 0) balls.push_back(b);
+  if (!balls.empty()) {
+    std::nth_element(balls.begin(), balls.begin() + ptrdiff_t(balls.size() / 2), balls.end());
+    const double thinnest = 0.25 * balls[balls.size() / 2];
+    for (double& b : size.inscribed)
+      if (b < thinnest) b = 0;
+  }
+  // Each vertex of the wire counts for the nearest point of the line (its own pass's,
+  // within a spacing); then each point takes the most of itself and the two points on
+  // either side.
+  const PointGrid lines(centre.points, spacing, bounding_box(wire.positions));
+  std::vector<int32_t> nearest(wire.positions.size(), -1);
+  std::vector<double> distance(wire.positions.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nearest.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t v = range.begin(); v < range.end(); ++v)
+      distance[v] = std::sqrt(lines.nearest_squared(wire.positions[v], spacing, [&](int32_t id, double) {
+        nearest[v] = id;
+        return true;
+      }));
+  });
+  std::vector<double> own(n, 0);
+  for (size_t v = 0; v < nearest.size(); ++v)
+    if (distance[v] < INFINITY) own[size_t(nearest[v])] = std::max(own[size_t(nearest[v])], distance[v]);
+  for (int32_t c = 0; c < centre.size(); ++c) {
+    const int32_t begin = centre.start[size_t(c)], count = centre.start[size_t(c) + 1] - begin;
+    for (int32_t k = 0; k < count; ++k)
+      for (int32_t d = -2; d <= 2; ++d) {
+        double& e = size.extent[size_t(begin + k)];
+        e = std::max(e, own[size_t(begin + ((k + d) % count + count) % count)]);
+      }
+  }
+  size.radius = *std::max_element(size.extent.begin(), size.extent.end());
+  return size;
+}
+
 } // namespace
 
 WireMethod parse_wire_method(std::string_view name) {
@@ -100,39 +164,54 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
     if (!(made.radius > 0)) throw TopologyError("the curve touches itself: no wire radius avoids a self-intersection");
     result.mesh = std::move(made.mesh);
     result.radius = made.radius;
-    if (job.bridges) {
-      stages.begin("bridges");
-      Polylines swept; // the centre line the tube was swept along
-      if (curve.normals.empty()) swept = cycle_curves(curve.quads, curve.cycle, options.curve);
-      const Polylines& centre = curve.normals.empty() ? swept : curve.curves;
-      // Passes are bridged up to 1.5 spacings apart (the spacing asked for, or the one a
-      // covering curve has: the surface's area over the curve's length), or 3 radii for
-      // a wire thicker than that leaves room for.
-      const double spacing = job.curve.spacing ? *job.curve.spacing : covered_area(curve.quads) / total_length(centre);
-      result.bridges = plan_bridges(
-          centre, {.max_stretch = *job.bridges, .radius = made.radius, .reach = std::max(1.5 * spacing, 3 * made.radius)});
-      if (!result.bridges.ends.empty()) { // none where no pass is near enough: the report says so
-        const PolygonMesh struts = bridge_solids(centre, result.bridges, made.radius, job.sides);
-        SolidUnion united;
-        try {
-          united = unite_solids(result.mesh, struts, "wire", "bridges");
-        } catch (const InputError& e) {
-          throw TopologyError(std::string(e.what()) + " at radius " + parameter_text(parameters::radius, std::optional(made.radius)) +
-                              ", so bridges cannot be fused into it: choose a smaller radius (auto: the largest clear one)");
-        }
-        unmeasured = beside_creases(united, 1.5 * made.radius);
-        // A face with a corner of a strut lies on the strut (a face between two points
-        // of the crease, rarely, on either).
-        result.bridge_faces.assign(size_t(united.mesh.num_faces()), 0);
-        for (int32_t f = 0; f < united.mesh.num_faces(); ++f)
-          for (const int32_t v : united.mesh.face(f)) result.bridge_faces[size_t(f)] |= united.origin[size_t(v)] == UnionVertex::second;
-        result.mesh = std::move(united.mesh);
-      }
-    }
   } else {
     VariableWire made = variable_wire(curve.quads, curve.cycle, variable_options(job), progress);
     result.mesh = std::move(made.mesh);
     known_clear = made.clear;
+  }
+  if (job.bridges) {
+    stages.begin("bridges");
+    const bool constant = job.method == WireMethod::constant;
+    // The line the wire follows: the one the tube was swept along; a variable wire's
+    // slabs are centred on the cycle's control points, as its smooth curve is.
+    Polylines swept;
+    if (!constant || curve.normals.empty()) swept = cycle_curves(curve.quads, curve.cycle, job.curve.curve);
+    const Polylines& centre = !constant || curve.normals.empty() ? swept : curve.curves;
+    // Passes are bridged up to 1.5 spacings apart (the spacing asked for, or the one a
+    // covering curve has: the surface's area over the curve's length), or 3 radii for
+    // a wire thicker than that leaves room for.
+    const double spacing =
+        constant && job.curve.spacing ? *job.curve.spacing : covered_area(curve.quads) / total_length(centre);
+    const SlabSize slab = constant ? SlabSize{.radius = result.radius} : slab_size(result.mesh, centre, spacing);
+    result.bridges = plan_bridges(centre, {.max_stretch = *job.bridges,
+                                           .radius = slab.radius,
+                                           .reach = std::max(1.5 * spacing, 3 * slab.radius),
+                                           .inscribed = slab.inscribed,
+                                           .extent = slab.extent});
+    if (!result.bridges.ends.empty()) { // none where no pass is near enough: the report says so
+      const PolygonMesh struts = bridge_solids(centre, result.bridges, job.sides);
+      SolidUnion united;
+      try {
+        united = unite_solids(result.mesh, struts, "wire", "bridges");
+      } catch (const InputError& e) {
+        throw TopologyError(std::string(e.what()) +
+                            (constant ? " at radius " + parameter_text(parameters::radius, std::optional(result.radius)) +
+                                            ", so bridges cannot be fused into it: choose a smaller radius (auto: the "
+                                            "largest clear one)"
+                                      : ", so bridges cannot be fused into it: choose a thinner or narrower wire "
+                                        "(--thickness, --s)"));
+      }
+      known_clear = false;
+      const double thickest =
+          slab.inscribed.empty() ? slab.radius : *std::max_element(slab.inscribed.begin(), slab.inscribed.end());
+      unmeasured = beside_creases(united, 1.5 * thickest);
+      // A face with a corner of a strut lies on the strut (a face between two points
+      // of the crease, rarely, on either).
+      result.bridge_faces.assign(size_t(united.mesh.num_faces()), 0);
+      for (int32_t f = 0; f < united.mesh.num_faces(); ++f)
+        for (const int32_t v : united.mesh.face(f)) result.bridge_faces[size_t(f)] |= united.origin[size_t(v)] == UnionVertex::second;
+      result.mesh = std::move(united.mesh);
+    }
   }
   if (!job.report) {
     stages.end();
@@ -311,7 +390,7 @@ Scene curve_scene(const CurveResult& curve, MeshStyle occluder) {
   return scene;
 }
 
-Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, MeshStyle occluder,
+Scene wire_scene(PolygonMesh wire, const CurveResult& curve, const WireJob& job, MeshStyle occluder,
                  std::span<const uint8_t> bridge_faces) {
   Scene scene;
   if (!bridge_faces.empty()) {
@@ -323,8 +402,14 @@ Scene wire_scene(PolygonMesh wire, const CurveResult& curve, WireShape shape, Me
     scene.meshes.push_back({.mesh = std::move(bridges), .color = bridge_color});
   }
   scene.meshes.push_back({.mesh = std::move(wire), .color = wire_color});
-  if (shape == WireShape::wire)
-    scene.meshes.push_back({.mesh = curve_surface(curve), .color = surface_color, .style = occluder});
+  // A variable wire's slabs lie on the cycle's triangles, which a curve moved onto the
+  // input (CurveJob::spacing) leaves: the input's surface would hide them where the even
+  // mesh's flat faces cut below it.
+  if (job.shape == WireShape::wire)
+    scene.meshes.push_back({.mesh = job.method == WireMethod::variable ? cycle_triangles(curve.quads, curve.cycle)
+                                                                       : curve_surface(curve),
+                            .color = surface_color,
+                            .style = occluder});
   return scene;
 }
 

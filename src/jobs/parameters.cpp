@@ -200,10 +200,8 @@ void check_parameters(const WireJob& job) {
   check_numbers(job);
   if (job.shape == WireShape::ribbon && job.min_thickness > 0)
     throw ParameterError(parameters::min_thickness.name, " applies to wires: a ribbon is a band with no thickness to measure");
-  if (job.bridges && (job.shape == WireShape::ribbon || job.method == WireMethod::variable))
-    throw ParameterError(parameters::bridges.name, job.shape == WireShape::ribbon
-                                                       ? " apply to wires: a ribbon lies on the surface, which holds it"
-                                                       : " are made for the constant wire only so far (--method constant)");
+  if (job.bridges && job.shape == WireShape::ribbon)
+    throw ParameterError(parameters::bridges.name, " apply to wires: a ribbon lies on the surface, which holds it");
 }
 void check_parameters(const DuotoneJob& job) {
   check_numbers(job);

@@ -330,9 +330,9 @@ StudioParams effective(const StudioSurface& surface, StudioParams params) {
   const StudioMode mode = params.mode;
   params.wire.method = mode == StudioMode::variable_wire || mode == StudioMode::variable_ribbon ? WireMethod::variable : WireMethod::constant;
   params.wire.shape = mode == StudioMode::constant_ribbon || mode == StudioMode::variable_ribbon ? WireShape::ribbon : WireShape::wire;
-  // The page sends every mode's settings; bridges are the constant wire's, and a preview
-  // shows the wire without them (their union costs several times the wire).
-  if (mode != StudioMode::constant_wire || params.preview) params.wire.bridges.reset();
+  // The page sends every mode's settings; bridges are the wires' (not the ribbons'), and
+  // a preview shows the wire without them (their union costs several times the wire).
+  if ((mode != StudioMode::constant_wire && mode != StudioMode::variable_wire) || params.preview) params.wire.bridges.reset();
   if (!params.preview) return params;
   params.duotone.shell.reset(); // the two-colour print is the full result's
   params.duotone.min_thickness = params.duotone.clearance = 0;
@@ -865,7 +865,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
     // As `meander curve --png`, `meander wire --png` and `meander duotone --png` draw it.
     const Scene scene = textured   ? duotone_scene({.mesh = result.mesh, .appearance = result.appearance})
                         : curve_mode ? curve_scene(result.curve)
-                                     : wire_scene(result.mesh, result.curve, result.params.wire.shape, MeshStyle::faint,
+                                     : wire_scene(result.mesh, result.curve, result.params.wire, MeshStyle::faint,
                                                   result.bridge_faces);
     return {png_file_bytes(
                 render(scene, {.width = picture.width, .height = picture.height, .samples = 4, .camera = picture.camera})),

@@ -21,6 +21,17 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
     throw ParameterError("reach", " must be more than the wire's thickness (got " + std::to_string(options.reach) +
                                       " for a radius of " + std::to_string(options.radius) + ")");
   const size_t n = centre.points.size();
+  const std::span<const double> inscribed = options.inscribed, extent = options.extent;
+  for (const auto& [name, values] : {std::pair("inscribed", inscribed), std::pair("extent", extent)})
+    if (!values.empty() && values.size() != n)
+      throw ParameterError(name, " must hold one radius per centre point (got " + std::to_string(values.size()) + " for " +
+                                     std::to_string(n) + ")");
+  // About point i: the ball inside the wire, and how far the wire reaches.
+  const auto ball = [&](size_t i) { return inscribed.empty() ? options.radius : inscribed[i]; };
+  const auto reaches = [&](size_t i) { return extent.empty() ? options.radius : extent[i]; };
+  double thickest = inscribed.empty() ? options.radius : 0, widest = extent.empty() ? options.radius : 0;
+  for (const double b : inscribed) thickest = std::max(thickest, b);
+  for (const double e : extent) widest = std::max(widest, e);
   std::vector<int32_t> curve_of(n);
   std::vector<double> arc(n), length(size_t(centre.size()));
   for (int32_t c = 0; c < centre.size(); ++c) {
@@ -50,17 +61,20 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   }
   // Each point's candidate: the nearest point of another pass within reach. A cell of the
   // grid is as wide as that and as what the clearance below looks for around a sample.
-  const double r = options.radius, reach = options.reach, clearance = 3 * r;
+  // The gap kept between a strut and the wire beside it, in balls at its thinner end.
+  constexpr double gap = strut + 1.2;
+  const double r = options.radius, reach = options.reach, clearance = widest + gap * thickest;
   const PointGrid grid(centre.points, std::max(reach, clearance + (step + r) / 2), bounding_box(centre.points));
   const std::span<const int32_t> ids = grid.ids();
   std::vector<std::tuple<double, int32_t, int32_t>> candidates; // (distance, i, j)
   for (size_t i = 0; i < n; ++i) {
+    if (!(ball(i) > 0)) continue;
     double best = reach;
     int32_t found = -1;
     grid.for_each_near(centre.points[i], [&](size_t rank) {
       const size_t j = size_t(ids[rank]);
       const double d = norm(point(j) - point(i));
-      if (j == i || !(d <= best) || (d == best && found >= 0 && int32_t(j) > found)) return;
+      if (j == i || !(ball(j) > 0) || !(d <= best) || (d == best && found >= 0 && int32_t(j) > found)) return;
       if (curve_of[i] == curve_of[j] && !(along(i, j) > 1.4 * d)) return;
       best = d, found = int32_t(j);
     });
@@ -68,30 +82,39 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   }
   std::sort(candidates.begin(), candidates.end());
 
-  // Whether a bridge's axis keeps 3 radii from every other part of the wire (points more
-  // than reach + 2 radii along their curve from both ends) and from the bridges so far:
-  // a gap of more than a radius between the strut and the tube beside it. Curve points
-  // are tested, widened by half the longest step between them, around samples of the
-  // axis a radius apart.
+  // Whether a bridge's axis keeps clear of every other part of the wire (points more
+  // than reach + 2 radii along their curve from both ends: by the wire's extent there,
+  // its strut and a gap of 1.2 balls; 3 radii for a tube) and of the bridges so far (by
+  // 1.5 times the sum of their balls). Curve points are tested, widened by half the
+  // longest step between them, around samples of the axis a radius apart.
   BridgePlan plan;
+  std::vector<double> balls; // per bridge: the ball at its thinner end
   const auto clear = [&](size_t i, size_t j) {
     const Vec3 p = centre.points[i], q = centre.points[j];
-    // Bridges no longer than reach whose middles lie farther apart than reach + 3 radii
-    // keep 3 radii apart.
+    const double own = std::min(ball(i), ball(j));
+    // Bridges no longer than reach whose middles lie farther apart than reach + clearance
+    // keep that far apart.
     const double near = (reach + clearance) * (reach + clearance);
-    for (const auto& [a, b] : plan.ends) {
-      const Vec3 s = centre.points[size_t(a)], t = centre.points[size_t(b)], offset = (s + t - p - q) * 0.5f;
-      if (dot(offset, offset) < near && segment_distance(p, q, s, t) < clearance) return false;
+    for (size_t k = 0; k < plan.ends.size(); ++k) {
+      const Vec3 s = centre.points[size_t(plan.ends[k][0])], t = centre.points[size_t(plan.ends[k][1])];
+      const Vec3 offset = (s + t - p - q) * 0.5f;
+      if (dot(offset, offset) < near && segment_distance(p, q, s, t) < 1.5 * (own + balls[k])) return false;
     }
     const double joined = reach + 2 * r;
-    const int samples = 1 + int(std::ceil(norm(q - p) / r));
+    // A slab's strut runs inside it for half its extent at least: that much of the
+    // axis is not looked at (a tube's is, all of it).
+    const double length = norm(q - p);
+    const float from = extent.empty() ? 0 : float(std::min(0.5, 0.5 * reaches(i) / length)),
+                to = extent.empty() ? 0 : float(std::min(0.5, 0.5 * reaches(j) / length));
+    const Vec3 a = p + (q - p) * from, b = q - (q - p) * to;
+    const int samples = 1 + int(std::ceil(length / r));
     for (int k = 0; k <= samples; ++k) {
       bool ok = true;
-      grid.for_each_near(p + (q - p) * (float(k) / float(samples)), [&](size_t rank) {
+      grid.for_each_near(a + (b - a) * (float(k) / float(samples)), [&](size_t rank) {
         const size_t m = size_t(ids[rank]);
         if ((curve_of[m] == curve_of[i] && along(m, i) < joined) || (curve_of[m] == curve_of[j] && along(m, j) < joined))
           return true;
-        ok = segment_distance(centre.points[m], centre.points[m], p, q) >= clearance + step / 2;
+        ok = segment_distance(centre.points[m], centre.points[m], a, b) >= reaches(m) + gap * own + step / 2;
         return ok;
       });
       if (!ok) return false;
@@ -113,6 +136,8 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   };
   const auto accept = [&](size_t i, size_t j, double gap) {
     plan.ends.push_back({int32_t(i), int32_t(j)});
+    balls.push_back(std::min(ball(i), ball(j)));
+    plan.radii.push_back(strut * balls.back());
     block(i, gap), block(j, gap);
   };
   const double L = options.max_stretch;
@@ -178,13 +203,12 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   return plan;
 }
 
-PolygonMesh bridge_solids(const Polylines& centre, const BridgePlan& plan, double radius, int sides) {
-  if (!(radius > 0) || !std::isfinite(radius))
-    throw ParameterError("radius", " must be a positive number (got " + std::to_string(radius) + ")");
+PolygonMesh bridge_solids(const Polylines& centre, const BridgePlan& plan, int sides) {
   if (sides < 3) throw ParameterError("sides", " must be at least 3 (got " + std::to_string(sides) + ")");
   PolygonMesh mesh;
-  const double width = strut * radius;
-  for (const auto& [a, b] : plan.ends) {
+  for (size_t bridge = 0; bridge < plan.ends.size(); ++bridge) {
+    const auto [a, b] = plan.ends[bridge];
+    const double width = plan.radii[bridge];
     const Vec3d p = to_double(centre.points[size_t(a)]), q = to_double(centre.points[size_t(b)]);
     const Vec3d axis = (q - p) * (1 / norm(q - p));
     const Vec3d other = std::abs(axis.x) < 0.6 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
