@@ -345,6 +345,8 @@ py::object json_object(const std::string& text) { return py::module_::import("js
 py::tuple wire(const Mesh& mesh, bool strict, int64_t max_faces, py::handle progress, const py::kwargs& params) {
   WireJob job;
   set_parameters(job, params, "wire");
+  // As `meander wire`: the variable method starts from the shaped tree unless told.
+  if (job.method == WireMethod::variable && !params.contains("tree")) job.curve.cycle.tree = TreeStrategy::shaped;
   check_parameters(job);
   CurveJob curve_job = wire_curve_job(job);
   curve_job.max_faces = max_faces;

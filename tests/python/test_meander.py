@@ -171,10 +171,10 @@ def test_a_bridged_wire_is_the_command_lines_one_piece(shared, cli, tmp_path, me
     source = shared / "eight.off"
     out, report_path = tmp_path / "bridged.ply", tmp_path / "report.json"
     subprocess.run([cli, "wire", str(source), "-o", str(out), "--report", str(report_path), "--model-size", "80mm",
-                    "--spacing", "4mm", "--bridges", "16mm", "--method", method, "--levels", "1", "--tree", "shaped"],
+                    "--spacing", "4mm", "--bridges", "16mm", "--method", method, "--levels", "1"],
                    check=True, capture_output=True)
     vertices, faces, report = meander.wire(meander.read(source), model_size="80mm", spacing="4mm", bridges="16mm",
-                                           method=method, levels=1, tree="shaped")
+                                           method=method, levels=1)
     written = meander.read(out)
     np.testing.assert_array_equal(vertices, written.vertices)
     np.testing.assert_array_equal(faces, written.faces)
