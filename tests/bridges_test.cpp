@@ -11,6 +11,7 @@
 #include "meander/io.h"
 #include "meander/jobs.h"
 #include "meander/shapes.h"
+#include "meander/solid_union.h"
 #include "meander/textured_io.h"
 
 #include <gtest/gtest.h>
@@ -218,13 +219,15 @@ TEST(Bridges, MakeTheVariableWireOneRigidSolid) {
     // Each strut is thinner than the slab it starts in: its caps lie inside the wire.
     ASSERT_EQ(wire.bridges.radii.size(), wire.bridges.ends.size());
     const ClosestPoints slab(free.mesh);
-    for (size_t k = 0; k < wire.bridges.ends.size(); ++k)
-      for (const int32_t e : wire.bridges.ends[k]) {
-        const Vec3d p = to_double(centre.points[size_t(e)]);
-        const ClosestPoints::Hit hit = slab.closest_hit(p);
-        ASSERT_LT(dot(p - hit.point, hit.normal), 0) << "bridge " << k << " ends outside the wire";
-        ASSERT_LT(wire.bridges.radii[k], norm(p - hit.point)) << "bridge " << k << " is thicker than the slab";
-      }
+    std::vector<Vec3> ends;
+    for (const auto& bridge : wire.bridges.ends)
+      for (const int32_t e : bridge) ends.push_back(centre.points[size_t(e)]);
+    const std::vector<uint8_t> inside = inside_solid(free.mesh, ends);
+    for (size_t k = 0; k < ends.size(); ++k) {
+      ASSERT_TRUE(inside[k]) << "bridge " << k / 2 << " ends outside the wire";
+      ASSERT_LT(wire.bridges.radii[k / 2], norm(slab.closest(to_double(ends[k])) - to_double(ends[k])))
+          << "bridge " << k / 2 << " is thicker than the slab";
+    }
     expect_one_rigid_solid(wire.mesh, free.mesh, 1.2);
   }
 }

@@ -362,6 +362,7 @@ TEST(Studio, BridgesComeWithTheFullWires) {
     EXPECT_TRUE(bridged.report.watertight);
     EXPECT_FALSE(bridged.report.self_intersecting);
     const auto stats = nlohmann::json::parse(studio_stats_json(bridged));
+    EXPECT_EQ(stats["millimetres"], false); // in the model's units
     EXPECT_EQ(stats["bridges"]["count"], bridged.bridges.ends.size());
     EXPECT_EQ(stats["bridges"]["every_pass_tied"], bridged.bridges.every_pass_tied);
     EXPECT_LE(stats["bridges"]["longest_stretch"].get<double>(), 1.0 + 1e-9);
@@ -393,6 +394,7 @@ TEST(Studio, ADuotoneWithAShellIsATwoColourPrint) {
   EXPECT_GE(studio_result_size(surface, request.params),
             painted.triangles + painted.shell->solids[0].num_faces() + painted.shell->solids[1].num_faces());
   const auto stats = nlohmann::json::parse(studio_stats_json(painted));
+  EXPECT_EQ(stats["millimetres"], true); // the page gives its lengths in mm
   ASSERT_EQ(stats["shell"]["volumes"].size(), 2u);
   EXPECT_GT(stats["shell"]["volumes"][0].get<double>(), 0);
   EXPECT_EQ(stats["shell"]["summary"], shell_summary(*painted.shell, painted.params.duotone));

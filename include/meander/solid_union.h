@@ -1,9 +1,11 @@
-// The union of two closed solids, for bridges fused into a wire (bridges.h).
+// Closed solids by CGAL's exact predicates: the union of two, for bridges fused into a
+// wire (bridges.h), and which points one holds, for where they may end.
 #pragma once
 
 #include "meander/mesh.h"
 
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -31,5 +33,11 @@ struct SolidUnion {
 // collapsed. Deterministic.
 SolidUnion unite_solids(const PolygonMesh& first, const PolygonMesh& second, std::string_view first_name = "first mesh",
                         std::string_view second_name = "second mesh");
+
+// Per point, 1 if it lies inside the solid a closed, outward mesh bounds, 0 outside or
+// on it, by CGAL's Side_of_triangle_mesh (a ray's crossings, exact predicates): unlike
+// the side of the nearest face, the same answer wherever that face is shared. Throws
+// InputError as unite_solids does for a mesh that is not closed. O(n log n + p log n).
+std::vector<uint8_t> inside_solid(const PolygonMesh& mesh, std::span<const Vec3> points, std::string_view name = "mesh");
 
 } // namespace meander

@@ -70,15 +70,11 @@ struct SlabSize {
 SlabSize slab_size(const PolygonMesh& wire, const Polylines& centre, double spacing) {
   const size_t n = centre.points.size();
   SlabSize size{.inscribed = std::vector<double>(n), .extent = std::vector<double>(n)};
+  const std::vector<uint8_t> inside = inside_solid(wire, centre.points, "wire");
   const ClosestPoints surface(wire);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& range) {
-    ClosestPoints::Hit last;
-    for (size_t i = range.begin(); i < range.end(); ++i) {
-      const Vec3d p = to_double(centre.points[i]);
-      last = surface.closest_hit(p, last);
-      // Outward faces: a point inside lies behind the face it is nearest.
-      if (dot(p - last.point, last.normal) < 0) size.inscribed[i] = norm(p - last.point);
-    }
+    for (size_t i = range.begin(); i < range.end(); ++i)
+      if (inside[i]) size.inscribed[i] = norm(surface.closest(to_double(centre.points[i])) - to_double(centre.points[i]));
   });
   // Struts are as thick as the ball at their thinner end: none where the slab is less
   // than a quarter of its usual thickness about the line (the line runs near its face;

@@ -159,11 +159,15 @@ bool set_studio_parameter(StudioParams& p, const std::string& key, const json& v
   return known;
 }
 
+// Made to a model size: the result's lengths are millimetres.
+bool sized(const StudioParams& p) {
+  return (p.mode == StudioMode::duotone ? p.duotone.model_size : p.wire.curve.model_size).has_value();
+}
+
 // A length with a unit ("3mm") needs the model size: without one, lengths are in the
 // model's own units. A picture's lengths are on paper, in millimetres.
 void refuse_units_without_model_size(const json& document, const StudioParams& p) {
-  const bool sized = p.mode == StudioMode::duotone ? p.duotone.model_size.has_value() : p.wire.curve.model_size.has_value();
-  if (sized || p.mode == StudioMode::picture) return;
+  if (sized(p) || p.mode == StudioMode::picture) return;
   const auto check = [&](const auto& job) {
     visit_parameters(job, [&](const Parameter& parameter, const auto&) {
       const auto value = document.find(std::string(parameter.name));
@@ -504,6 +508,7 @@ std::string studio_stats_json(const StudioResult& result) {
                 {"curve_points", curves.points.size()},
                 {"curve_length", result.curve_length},
                 {"seconds", result.seconds}};
+  if (result.params.mode != StudioMode::picture) stats["millimetres"] = sized(result.params);
   if (result.curve.cycle.leaves >= 0) stats["leaves"] = result.curve.cycle.leaves;
   if (result.evenness) {
     stats["gap_median"] = result.evenness->gap_median;
@@ -796,9 +801,7 @@ StudioDownload studio_download(const StudioSurface& surface, const StudioResult&
   const bool curve_mode = result.params.mode == StudioMode::curve;
   const bool picture_mode = result.params.mode == StudioMode::picture;
   const bool textured = !result.appearance.materials.empty();
-  const bool millimetres = (result.params.mode == StudioMode::duotone ? result.params.duotone.model_size
-                                                                      : result.params.wire.curve.model_size)
-                               .has_value();
+  const bool millimetres = sized(result.params);
   auto mesh_file = [&](const char* extension, const char* type) {
     if (picture_mode)
       throw UsageError(std::string("picture mode makes no mesh to save as ") + extension +

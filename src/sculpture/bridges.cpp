@@ -61,9 +61,9 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
   }
   // Each point's candidate: the nearest point of another pass within reach. A cell of the
   // grid is as wide as that and as what the clearance below looks for around a sample.
-  // The gap kept between a strut and the wire beside it, in balls at its thinner end.
-  constexpr double gap = strut + 1.2;
-  const double r = options.radius, reach = options.reach, clearance = widest + gap * thickest;
+  // A strut and the gap kept beside it, in balls at its thinner end.
+  constexpr double room = strut + 1.2;
+  const double r = options.radius, reach = options.reach, clearance = widest + room * thickest;
   const PointGrid grid(centre.points, std::max(reach, clearance + (step + r) / 2), bounding_box(centre.points));
   const std::span<const int32_t> ids = grid.ids();
   std::vector<std::tuple<double, int32_t, int32_t>> candidates; // (distance, i, j)
@@ -114,7 +114,7 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
         const size_t m = size_t(ids[rank]);
         if ((curve_of[m] == curve_of[i] && along(m, i) < joined) || (curve_of[m] == curve_of[j] && along(m, j) < joined))
           return true;
-        ok = segment_distance(centre.points[m], centre.points[m], a, b) >= reaches(m) + gap * own + step / 2;
+        ok = segment_distance(centre.points[m], centre.points[m], a, b) >= reaches(m) + room * own + step / 2;
         return ok;
       });
       if (!ok) return false;
@@ -205,6 +205,9 @@ BridgePlan plan_bridges(const Polylines& centre, const BridgeOptions& options) {
 
 PolygonMesh bridge_solids(const Polylines& centre, const BridgePlan& plan, int sides) {
   if (sides < 3) throw ParameterError("sides", " must be at least 3 (got " + std::to_string(sides) + ")");
+  if (plan.radii.size() != plan.ends.size())
+    throw ParameterError("radii", " must hold one radius per bridge (got " + std::to_string(plan.radii.size()) + " for " +
+                                      std::to_string(plan.ends.size()) + ")");
   PolygonMesh mesh;
   for (size_t bridge = 0; bridge < plan.ends.size(); ++bridge) {
     const auto [a, b] = plan.ends[bridge];

@@ -7,6 +7,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -192,6 +193,16 @@ SolidUnion unite_solids(const PolygonMesh& first, const PolygonMesh& second, std
   SolidUnion result{.mesh = to_polygons(rounded)};
   result.origin = vertex_origins(result.mesh, first, second);
   return result;
+}
+
+std::vector<uint8_t> inside_solid(const PolygonMesh& mesh, std::span<const Vec3> points, std::string_view name) {
+  const SurfaceMesh surface = to_surface(mesh, name);
+  if (!CGAL::is_closed(surface)) throw InputError("inside: the " + std::string(name) + " is not closed");
+  const CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel> side(surface);
+  std::vector<uint8_t> inside(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    inside[i] = side({points[i].x, points[i].y, points[i].z}) == CGAL::ON_BOUNDED_SIDE;
+  return inside;
 }
 
 } // namespace meander

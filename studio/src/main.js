@@ -633,6 +633,8 @@ function params() {
 
 function showStats(stats) {
   const yesNo = (b) => (b ? 'yes' : 'no');
+  // A result made to a model size has its lengths in millimetres.
+  const mm = stats.millimetres ? ' mm' : '';
   const what = { stopped: 'was stopped', refused: 'was refused', failed: 'failed' }[state.full];
   const of = stats.preview ? (state.full === 'pending' ? 'preview (the full result follows)' : what ? `preview (the full result ${what})` : 'preview')
     : state.stale && what ? `the result before the change (the new one ${what})` : 'full result';
@@ -646,7 +648,7 @@ function showStats(stats) {
     ['stats of', of],
     ['triangles', stats.triangles.toLocaleString()],
     [stats.mode === 'duotone' ? 'separating curves' : 'curves', stats.curves],
-    ['curve length', stats.curve_length.toPrecision(5)],
+    ['curve length', `${stats.curve_length.toPrecision(5)}${mm}`],
   ];
   if (stats.mode === 'duotone') {
     rows.push(['quads', stats.quads.toLocaleString()], ['faces', stats.faces.toLocaleString()]);
@@ -675,14 +677,14 @@ function showStats(stats) {
     if (stats.cap_flips > 0) rows.push(['caps flipped', `${plural(stats.cap_flips, 'edge', 'edges')} (flat triangles fold the slabs)`]);
     if (stats.cap_cuts > 0) rows.push(['caps cut off', `${plural(stats.cap_cuts, 'triangle', 'triangles')} on the boundary`]);
     if (stats.needle_collapses > 0) rows.push(['needles collapsed', `${plural(stats.needle_collapses, 'short edge', 'short edges')} (needles and folded triangles fold the slabs)`]);
-    if (stats.radius) rows.push(['radius', stats.radius.toPrecision(4)]);
+    if (stats.radius) rows.push(['radius', `${stats.radius.toPrecision(4)}${mm}`]);
     // As `meander wire --bridges`: how many, and whether they tie every pass.
     if (stats.bridges) {
-      rows.push(['bridges', `${stats.bridges.count.toLocaleString()}, the longest stretch without one ${stats.bridges.longest_stretch.toPrecision(3)}${stats.bridges.every_pass_tied ? ': every pass tied' : ''}`]);
+      rows.push(['bridges', `${stats.bridges.count.toLocaleString()}, the longest stretch without one ${stats.bridges.longest_stretch.toPrecision(3)}${mm}${stats.bridges.every_pass_tied ? ': every pass tied' : ''}`]);
     }
   }
   if (stats.gap_median !== undefined) {
-    rows.push(['median gap', `${stats.gap_median.toPrecision(3)} (CV ${stats.gap_cv.toFixed(2)})`]);
+    rows.push(['median gap', `${stats.gap_median.toPrecision(3)}${mm} (CV ${stats.gap_cv.toFixed(2)})`]);
   }
   if (stats.leaves !== undefined) rows.push(['branch tips', stats.leaves.toLocaleString()]);
   rows.push(['made in', `${(stats.seconds * 1000).toFixed(0)} ms`], ['update', `${state.lastUpdateMs.toFixed(0)} ms`]);
