@@ -172,6 +172,7 @@ StudioResult make_studio_result(const StudioSurface& surface, const StudioParams
                                 const StudioResult* previous = nullptr, Progress* progress = nullptr);
 
 // The stats beside the view as JSON: mode, preview, triangles, curves, curve_length, seconds,
+// millimetres (not for a picture: true when made to a model size, its lengths in mm),
 // leaves (of the curve's tree), gap_median and gap_cv (with a spacing, of a full result),
 // for wires and ribbons vertices, faces, radius, preview_as_ribbon (true: a wire's preview
 // drawn as its ribbon) and (not for a preview, which has no report) watertight,
