@@ -25,10 +25,21 @@ def _metres(context) -> float:
     return context.scene.unit_settings.scale_length
 
 
-def _property(p):
+def _method_changed(settings, _context):
+    """As `meander wire` and the studio: the variable method starts from the shaped tree,
+    the constant one from the random tree, unless another tree was chosen."""
+    default = {"constant": "random", "variable": "shaped"}
+    other = "constant" if settings.method == "variable" else "variable"
+    if settings.tree == default[other]:
+        settings.tree = default[settings.method]
+
+
+def _property(p, update=None):
     """The Blender properties of one parameter: {name: property}."""
     name, kind, text = p["name"], p["type"], p["default"]
     options = {"name": name.replace("_", " ").capitalize(), "description": p["help"]}
+    if update is not None:
+        options["update"] = update
     bounds = {}
     if "min" in p:
         bounds["min"] = p["min"]
@@ -65,7 +76,7 @@ def _property(p):
 def _settings_class(job):
     annotations = {}
     for p in _meander.parameters(job):
-        annotations.update(_property(p))
+        annotations.update(_property(p, _method_changed if job == "wire" and p["name"] == "method" else None))
     return type(f"MEANDER_PG_{job}", (bpy.types.PropertyGroup,), {"__annotations__": annotations})
 
 

@@ -198,8 +198,9 @@ WireResult make_wire(const CurveResult& curve, const WireJob& job, StageTimes* t
                                         "(--thickness, --s)"));
       }
       known_clear = false;
+      // The ball of the thickest strut's end (a tube's radius).
       const double thickest =
-          slab.inscribed.empty() ? slab.radius : *std::max_element(slab.inscribed.begin(), slab.inscribed.end());
+          constant ? result.radius : *std::max_element(result.bridges.radii.begin(), result.bridges.radii.end()) / strut;
       unmeasured = beside_creases(united, 1.5 * thickest);
       // A face with a corner of a strut lies on the strut (a face between two points
       // of the crease, rarely, on either).

@@ -123,6 +123,11 @@ def run(meander):
         euler = len(wire.data.vertices) - len(wire.data.edges) + len(wire.data.polygons)
         check(euler < 0, f"the bridged wire's Euler characteristic is {euler}, not below 0")
         scene.meander_wire.use_bridges = False
+        # The variable method starts from the shaped tree, as `meander wire` and Python do.
+        scene.meander_wire.method = "variable"
+        check(scene.meander_wire.tree == "shaped", f"a variable wire's tree is {scene.meander_wire.tree}")
+        scene.meander_wire.method = "constant"
+        check(scene.meander_wire.tree == "random", f"a constant wire's tree is {scene.meander_wire.tree}")
 
         select(source)
         scene.meander_duotone.texture_size = 256
