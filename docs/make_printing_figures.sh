@@ -20,3 +20,10 @@ trap 'rm -rf "$OUT"' EXIT
   -o "$OUT/spot.3mf" --parts "$OUT/spot_1.ply,$OUT/spot_2.ply" \
   --png images/printing_shell_spot.png --size 900x600 --view -60,15 --fit
 "$MEANDER" render "$OUT/spot_1.ply" -o images/printing_shell_spot_piece.png --size 900x600 --view -60,15 --fit
+
+# The bunny at 100 mm with the same wall: its ears are too thin and fold too sharply for a
+# wall that follows the quads, so the shell is sampled; the first colour's solid alone.
+"$MEANDER" duotone "$MESHES/bunny_closed.off" --model-size 100mm --spacing 4mm --shell 1.5mm \
+  -o "$OUT/bunny.3mf" --parts "$OUT/bunny_1.ply,$OUT/bunny_2.ply" \
+  --png images/printing_shell_bunny.png --size 900x600 --fit
+"$MEANDER" render "$OUT/bunny_1.ply" -o images/printing_shell_bunny_piece.png --size 900x600 --fit

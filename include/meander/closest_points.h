@@ -32,6 +32,9 @@ public:
   // moves a little) makes the query several times as fast.
   Hit closest_hit(Vec3d p) const;
   Hit closest_hit(Vec3d p, const Hit& hint) const;
+  // The closest point no farther from p than `within`; none (triangle -1) when the
+  // surface lies farther: only that near a point is looked at.
+  Hit closest_hit(Vec3d p, const Hit& hint, double within) const;
   // A nearest point of the surface around `from`, for a point that moved a little from
   // it: walked to from from's triangle across edges and vertices to nearer faces, so a
   // few faces are looked at instead of the tree, and the point stays on the part of the

@@ -310,6 +310,9 @@ std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
                                               number(job.clearance) + ")"
                                         : "") +
                      "; a wall of " + number(*job.shell);
+  if (shell.sampled)
+    return text + ", solid where the model is thinner than two walls (too thin or too sharply folded for a wall " +
+           "that follows the quads: the shell was sampled, its outside within " + number(0.1 * *job.shell) + " of the surface).";
   if (shell.reduced_corners == 0) return text + " everywhere.";
   text += ", thinner at " + std::to_string(shell.reduced_corners) +
           " quad corners (the model is thinner than two walls there, or bends sharply), down to " + number(shell.thinnest) +

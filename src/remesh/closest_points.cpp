@@ -137,8 +137,12 @@ Vec3d ClosestPoints::closest(Vec3d p) const { return closest_hit(p).point; }
 ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p) const { return closest_hit(p, Hit{}); }
 
 ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint) const {
+  return closest_hit(p, hint, std::numeric_limits<double>::infinity());
+}
+
+ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint, double within) const {
   if (!tree_->scene) return {p, {}};
-  Query q{.triangles = &tree_->triangles, .p = p};
+  Query q{.triangles = &tree_->triangles, .p = p, .best_squared = within * within};
   if (hint.triangle >= 0 && size_t(hint.triangle) < tree_->triangles.corners.size()) q.offer(hint.triangle);
   RTCPointQuery query;
   query.x = float(p.x);

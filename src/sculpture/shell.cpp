@@ -2,6 +2,7 @@
 
 #include "meander/error.h"
 #include "meander/printability.h"
+#include "sculpture/sampled_shell.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -455,22 +456,12 @@ bool widen(std::vector<float>& gaps, const QuadMesh& m, std::span<const int32_t>
   return true;
 }
 
-} // namespace
-
-SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options) {
+// The shell whose inside follows the quads' corners (see duotone_shell), of the oriented
+// surface `s`. Throws TopologyError where it cannot.
+SplitShell quad_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options, const Surface& s,
+                      const std::vector<Side>& sides) {
   const double h = options.thickness;
-  if (!(h > 0) || !std::isfinite(h)) throw ParameterError("shell", " must be a positive number (the wall's thickness)");
-  if (!(options.clearance >= 0) || !std::isfinite(options.clearance))
-    throw ParameterError("clearance", " must be a number, at least 0 (the gap between the two pieces)");
-  if (!(options.min_thickness >= 0) || options.min_thickness > h)
-    throw ParameterError("shell", " (" + std::to_string(h) + ") is thinner than the thinnest wall the printer makes (" +
-                                      std::to_string(options.min_thickness) + ")");
   const QuadMesh& m = duotone.quads;
-  RegionOrigins origins;
-  Surface s = weld(duotone_regions(duotone, style, m.positions, &origins), origins);
-  if (s.triangles.empty()) throw TopologyError("shell: the surface has no faces");
-  orient(s, sides_of(s));
-  const std::vector<Side> sides = sides_of(s); // again: orient() turned triangles round
   {
     PolygonMesh outside;
     outside.positions = s.positions;
@@ -569,6 +560,31 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
     }
   }
   return out;
+}
+
+} // namespace
+
+SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options) {
+  const double h = options.thickness;
+  if (!(h > 0) || !std::isfinite(h)) throw ParameterError("shell", " must be a positive number (the wall's thickness)");
+  if (!(options.clearance >= 0) || !std::isfinite(options.clearance))
+    throw ParameterError("clearance", " must be a number, at least 0 (the gap between the two pieces)");
+  if (!(options.min_thickness >= 0) || options.min_thickness > h)
+    throw ParameterError("shell", " (" + std::to_string(h) + ") is thinner than the thinnest wall the printer makes (" +
+                                      std::to_string(options.min_thickness) + ")");
+  RegionOrigins origins;
+  Surface s = weld(duotone_regions(duotone, style, duotone.quads.positions, &origins), origins);
+  if (s.triangles.empty()) throw TopologyError("shell: the surface has no faces");
+  orient(s, sides_of(s));
+  const std::vector<Side> sides = sides_of(s); // again: orient() turned triangles round
+  try {
+    return quad_shell(duotone, style, options, s, sides);
+  } catch (const TopologyError& e) {
+    if (options.clearance > 0)
+      throw TopologyError(std::string(e.what()) + "; where no wall follows the quads Meander samples the shell, but "
+                          "cannot draw a sampled shell's pieces apart yet: without --clearance it prints in two colours");
+  }
+  return sampled_shell({s.positions, s.triangles, s.region}, h);
 }
 
 } // namespace meander

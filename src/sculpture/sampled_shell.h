@@ -1,0 +1,35 @@
+// The shell of a surface too thin or too sharply folded for a wall that follows it quad by
+// quad (shell.cpp): sampled by CGAL's 3D mesher instead (internal to duotone_shell).
+#pragma once
+
+#include "meander/shell.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace meander {
+
+// A closed or open triangle surface, each component oriented (a closed one outward), with
+// a colour region (0 or 1) per triangle.
+struct PaintedSurface {
+  std::span<const Vec3> positions;
+  std::span<const std::array<int32_t, 3>> triangles;
+  std::span<const uint8_t> region;
+};
+
+// The shell as two solids, one per region, meeting along the cut: the points inside the
+// surface (for an open one, on the side its normals turn from) within the wall's
+// thickness of it, each belonging to the region its nearest surface point lies in. Where
+// the model is thinner than two walls it is solid. Meshed as a labelled domain by CGAL's
+// Mesh_3 (facets about a wall across, within a tenth of one of the surface, the regions'
+// common boundary and the surface's own kept as edges), seeded on both sides of the wall,
+// so that no part of a thin wall is missed; where a region's neck is narrower than the
+// cells, the cells are relabelled or their corners parted (by a twentieth of a cell) so
+// that each solid, and the shell they make, is a closed surface. Deterministic. Uses
+// `thickness` only (no clearance). Throws TopologyError when a solid is not one closed,
+// outward surface clear of itself.
+SplitShell sampled_shell(const PaintedSurface& surface, double thickness);
+
+} // namespace meander
