@@ -338,7 +338,7 @@ bool fill_outside_tips(C3t3& c3t3) {
       if (label_of(c3t3, c) == 0) outside.push_back(c);
     }
     if (outside.size() < 2 || outside.size() == star.size()) continue;
-    // The groups of outside cells joined across facets, largest first.
+    // The groups of outside cells joined across facets.
     std::vector<int> group(outside.size(), -1);
     std::vector<size_t> sizes;
     for (size_t i = 0; i < outside.size(); ++i) {
