@@ -32,10 +32,6 @@ using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, D
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
 using Triangle = std::array<int32_t, 3>;
 
-std::string place(Vec3d p) {
-  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
-}
-
 Vec3d unit(Vec3d v) {
   const double length = norm(v);
   return length > 0 ? v * (1 / length) : Vec3d{};
@@ -696,7 +692,7 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
     if (round == 8) {
       const Point& at = unparted[0].first->point().point();
       throw TopologyError("shell: the sampled solid of colour region " + std::to_string(unparted[0].second) + " still touches itself near " +
-                          place({at.x(), at.y(), at.z()}) + " (a thinner --shell may not)");
+                          place(to_float({at.x(), at.y(), at.z()})) + " (a thinner --shell may not)");
     }
     // The solid's cones join across the other's cells round the corner.
     for (const auto& [v, k] : unparted) {
@@ -711,7 +707,7 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
     PolygonMesh& solid = solids[size_t(k)].mesh;
     if (const std::vector<int32_t> crossing = self_intersecting_faces(solid); !crossing.empty())
       throw TopologyError("shell: the sampled wall of colour region " + std::to_string(k + 1) + " crosses itself near " +
-                          place(to_double(solid.positions[size_t(solid.face(crossing[0])[0])])));
+                          place(solid.positions[size_t(solid.face(crossing[0])[0])]));
     out.volumes[size_t(k)] = volume_of(solid);
     out.solids[size_t(k)] = std::move(solid);
   }

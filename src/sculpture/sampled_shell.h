@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace meander {
@@ -31,5 +32,8 @@ struct PaintedSurface {
 // `thickness` only (no clearance). Throws TopologyError when a solid is not one closed,
 // outward surface clear of itself.
 SplitShell sampled_shell(const PaintedSurface& surface, double thickness);
+
+// A point as the shells' messages name it: "(x, y, z)".
+std::string place(Vec3 p);
 
 } // namespace meander

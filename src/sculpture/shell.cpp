@@ -22,10 +22,6 @@ namespace {
 
 using Triangle = std::array<int32_t, 3>;
 
-std::string place(Vec3 p) {
-  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
-}
-
 // The two regions as one triangle surface, the points they share welded, each triangle
 // with its region and quad.
 struct Surface {
@@ -563,6 +559,10 @@ SplitShell quad_shell(const Duotone& duotone, TileStyle style, const ShellOption
 }
 
 } // namespace
+
+std::string place(Vec3 p) {
+  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+}
 
 SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options) {
   const double h = options.thickness;
