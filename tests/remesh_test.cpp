@@ -283,6 +283,39 @@ TEST(ClosestPoints, FindsWhatEveryTriangleSearchedFinds) {
   EXPECT_EQ(ClosestPoints(square).closest_hit(to_double(corner) + Vec3d{0, 0, 1}).triangle, lowest);
 }
 
+// any_near is handed every triangle within the distance, each with its point nearest p
+// (as a search of every triangle finds them), and no other; it stops at one that holds.
+TEST(ClosestPoints, AnyNearIsHandedTheTrianglesWithinTheDistance) {
+  const PolygonMesh mesh = torus(800);
+  const ClosestPoints surface(mesh);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  for (int k = 0; k < 100; ++k) {
+    const Vec3d p{coordinate(random), coordinate(random), coordinate(random) / 2};
+    const double within = 0.3;
+    std::vector<double> expected; // the distances of the triangles within, sorted
+    for (int32_t f = 0; f < mesh.num_faces(); ++f) {
+      const std::span<const int32_t> t = mesh.face(f);
+      const double d = distance_to_triangle(p, to_double(mesh.positions[size_t(t[0])]), to_double(mesh.positions[size_t(t[1])]),
+                                            to_double(mesh.positions[size_t(t[2])]));
+      if (d <= within) expected.push_back(d);
+    }
+    std::sort(expected.begin(), expected.end());
+    std::vector<double> seen;
+    EXPECT_FALSE(surface.any_near(p, within, [&](Vec3d closest, const std::array<Vec3d, 3>& corners) {
+      EXPECT_NEAR(norm(closest - p), distance_to_triangle(p, corners[0], corners[1], corners[2]), 1e-9);
+      seen.push_back(norm(closest - p));
+      return false;
+    }));
+    std::sort(seen.begin(), seen.end());
+    ASSERT_EQ(seen.size(), expected.size()) << k;
+    for (size_t i = 0; i < seen.size(); ++i) EXPECT_NEAR(seen[i], expected[i], 1e-9);
+    int tried = 0;
+    EXPECT_EQ(surface.any_near(p, within, [&](Vec3d, const std::array<Vec3d, 3>&) { return ++tried == 1; }), !expected.empty());
+    EXPECT_EQ(tried, expected.empty() ? 0 : 1);
+  }
+}
+
 // A point moved a little from a hit, outside a convex surface, walks to the closest
 // point, as the tree finds it, also when it moved past corners of faces or far across a
 // fine surface (then the tree takes over); and it stays on the sheet it was on where

@@ -369,8 +369,25 @@ TEST(CliShell, AThinScanIsSampledIntoTheSameTwoColourPrintEveryRun) {
   EXPECT_EQ(info.objects, 1) << info.text;
 }
 
-// Two pieces to print apart: each closed, outward and clear of itself, never nearer the
-// other than 0.45 of the clearance (CGAL measures), each opened by PrusaSlicer.
+// Two pieces to print apart, written to a.stl and b.stl in `dir`: each closed, outward and
+// clear of itself, never nearer the other than 0.45 of the clearance (CGAL measures), each
+// opened by PrusaSlicer as one manifold part.
+void expect_pieces_apart(const fs::path& dir, double clearance) {
+  const std::array<PolygonMesh, 2> parts{read_mesh(dir / "a.stl"), read_mesh(dir / "b.stl")};
+  for (int k = 0; k < 2; ++k) {
+    const test::CgalVerdict v = test::cgal_judge(parts[size_t(k)]);
+    EXPECT_TRUE(v.closed && v.outward && !v.self_intersecting);
+    EXPECT_GE(test::cgal_least_distance(parts[size_t(k)], parts[size_t(1 - k)]), 0.45 * clearance);
+  }
+  MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
+  for (const char* part : {"a.stl", "b.stl"}) {
+    const test::SlicerInfo info = test::prusa_slicer_info(dir / part);
+    ASSERT_EQ(info.status, 0) << info.text;
+    EXPECT_TRUE(info.manifold) << info.text;
+    EXPECT_EQ(info.parts, 1) << info.text;
+  }
+}
+
 TEST(CliShell, AClearanceMakesTwoPiecesToPrintApart) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const fs::path dir = test::output_dir();
@@ -380,19 +397,22 @@ TEST(CliShell, AClearanceMakesTwoPiecesToPrintApart) {
                                                (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("apart"));
-  const std::array<PolygonMesh, 2> parts{read_mesh(dir / "a.stl"), read_mesh(dir / "b.stl")};
-  for (int k = 0; k < 2; ++k) {
-    const test::CgalVerdict v = test::cgal_judge(parts[size_t(k)]);
-    EXPECT_TRUE(v.closed && v.outward && !v.self_intersecting);
-    EXPECT_GE(test::cgal_least_distance(parts[size_t(k)], parts[size_t(1 - k)]), 0.45 * 0.3);
-  }
-  MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
-  for (const char* part : {"a.stl", "b.stl"}) {
-    const test::SlicerInfo info = test::prusa_slicer_info(dir / part);
-    ASSERT_EQ(info.status, 0) << info.text;
-    EXPECT_TRUE(info.manifold) << info.text;
-    EXPECT_EQ(info.parts, 1) << info.text;
-  }
+  expect_pieces_apart(dir, 0.3);
+}
+
+// The same where no wall follows the quads (the kitten's ears at 40 mm): the shell is
+// sampled with the gap left out, and each piece is still one part.
+TEST(CliShell, AThinScanIsSampledIntoTwoPiecesToPrintApart) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const fs::path dir = test::output_dir();
+  const test::CommandResult r = test::run_cli({"duotone", (test::shared_meshes() / "kitten.off").string(), "--model-size", "40mm",
+                                               "--spacing", "4mm", "--shell", "1.5mm", "--clearance", "0.5mm", "-o",
+                                               (dir / "print.3mf").string(), "--parts",
+                                               (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("the shell was sampled"));
+  EXPECT_THAT(r.err, HasSubstr("apart"));
+  expect_pieces_apart(dir, 0.5);
 }
 
 TEST(CliShell, RefusesBadRequestsWithoutOutput) {
@@ -419,10 +439,6 @@ TEST(CliShell, RefusesBadRequestsWithoutOutput) {
        2, "at most"},
       {{"duotone", (test::shared_meshes() / "moebius.obj").string(), "-o", out, "--quad", "dual-simplest", "--shell", "0.01"},
        1, "not orientable"},
-      // Too thin for a wall that follows the quads: sampled shells are not drawn apart.
-      {{"duotone", (test::shared_meshes() / "kitten.off").string(), "-o", out, "--model-size", "40mm", "--spacing", "3mm",
-        "--shell", "1.5mm", "--clearance", "0.4mm"},
-       1, "cannot draw a sampled shell's pieces apart"},
   };
   for (const Refusal& refusal : refusals) {
     const test::CommandResult r = test::run_cli(refusal.args);

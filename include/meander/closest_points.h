@@ -4,6 +4,8 @@
 
 #include "meander/mesh.h"
 
+#include <array>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -35,6 +37,10 @@ public:
   // The closest point no farther from p than `within`; none (triangle -1) when the
   // surface lies farther: only that near a point is looked at.
   Hit closest_hit(Vec3d p, const Hit& hint, double within) const;
+  // Whether `near` holds for a triangle with a point within `within` of p, given that
+  // triangle's point closest to p and its corners: the triangles are tried in the tree's
+  // order until one does. O(log n + k) for k such triangles.
+  bool any_near(Vec3d p, double within, const std::function<bool(Vec3d closest, const std::array<Vec3d, 3>& corners)>& near) const;
   // A nearest point of the surface around `from`, for a point that moved a little from
   // it: walked to from from's triangle across edges and vertices to nearer faces, so a
   // few faces are looked at instead of the tree, and the point stays on the part of the

@@ -93,6 +93,26 @@ bool visit(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
+// A range query: each triangle within `within` of p handed to `near` until it holds.
+struct NearQuery {
+  const Triangles* triangles;
+  Vec3d p;
+  double within;
+  const std::function<bool(Vec3d, const std::array<Vec3d, 3>&)>* near;
+  bool found = false;
+};
+
+bool visit_near(RTCPointQueryFunctionArguments* args) {
+  NearQuery& q = *static_cast<NearQuery*>(args->userPtr);
+  if (q.found) return false; // the rest of a leaf of the tree
+  const std::array<Vec3d, 3> corners = q.triangles->at(int32_t(args->primID));
+  const Vec3d c = closest_on_triangle(q.p, corners[0], corners[1], corners[2]).first;
+  if (dot(c - q.p, c - q.p) > q.within * q.within || !(*q.near)(c, corners)) return false;
+  q.found = true;
+  args->query->radius = 0; // no need to look further
+  return true;
+}
+
 } // namespace
 
 struct ClosestPoints::Tree {
@@ -156,6 +176,22 @@ ClosestPoints::Hit ClosestPoints::closest_hit(Vec3d p, const Hit& hint, double w
   // Only a surface of degenerate triangles, which Embree leaves out, has none.
   if (q.triangle < 0) return {p, {}};
   return hit_on(q.triangle, q.best);
+}
+
+bool ClosestPoints::any_near(Vec3d p, double within,
+                             const std::function<bool(Vec3d closest, const std::array<Vec3d, 3>& corners)>& near) const {
+  if (!tree_->scene) return false;
+  NearQuery q{.triangles = &tree_->triangles, .p = p, .within = within, .near = &near};
+  RTCPointQuery query;
+  query.x = float(p.x);
+  query.y = float(p.y);
+  query.z = float(p.z);
+  query.radius = float(within * (1 + 1e-6)) + 1e-6f * float(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+  query.time = 0;
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(tree_->scene->scene(), &query, &context, visit_near, &q);
+  return q.found;
 }
 
 ClosestPoints::Hit ClosestPoints::hit_on(int32_t triangle, Vec3d point) const {

@@ -104,15 +104,15 @@ Vec3d pseudo_normal(const PaintedSurface& s, const Normals& n, const ClosestPoin
   return n.vertex[size_t(c[size_t(corner)])];
 }
 
-// The regions' common boundary and the surface's own, as polylines between the points
-// where more or fewer than two such edges meet (closed where none do): the curves the
-// mesher keeps as edges, so that the colours part along the painted line.
-std::vector<std::vector<Point>> features_of(const PaintedSurface& s, const Normals& n) {
+// The surface's boundary and (with `cut`) the regions' common one, as polylines between
+// the points where more or fewer than two such edges meet (closed where none do): the
+// curves the mesher keeps as edges, so that the colours part along the painted line.
+std::vector<std::vector<Point>> features_of(const PaintedSurface& s, const Normals& n, bool cut) {
   std::vector<std::pair<int32_t, int32_t>> edges; // both ways round
   for (size_t t = 0; t < s.triangles.size(); ++t)
     for (size_t k = 0; k < 3; ++k) {
       const int32_t other = n.across[3 * t + k];
-      const bool boundary = other < 0 || (other > int32_t(t) && s.region[size_t(other)] != s.region[t]);
+      const bool boundary = other < 0 || (cut && other > int32_t(t) && s.region[size_t(other)] != s.region[t]);
       if (!boundary) continue;
       const int32_t a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
       edges.emplace_back(a, b);
@@ -154,11 +154,14 @@ std::vector<std::vector<Point>> features_of(const PaintedSurface& s, const Norma
   return lines;
 }
 
-// Which region's solid a point is in (1 or 2), or 0: outside the surface or deeper than
-// the wall.
+// Which region's solid a point is in (1 or 2), or 0: outside the surface, deeper than
+// the wall, or (with a clearance) near where the two solids would meet.
 class Labels {
 public:
-  Labels(const PaintedSurface& s, const Normals& n, double wall) : s_(s), n_(n), wall_(wall), closest_(surface_of(s)) {}
+  Labels(const PaintedSurface& s, const Normals& n, double wall, double clearance)
+      : s_(s), n_(n), wall_(wall), reach_(0.3 * clearance), closest_(surface_of(s, 2)),
+        regions_{ClosestPoints(clearance > 0 ? surface_of(s, 0) : PolygonMesh{}),
+                 ClosestPoints(clearance > 0 ? surface_of(s, 1) : PolygonMesh{})} {}
 
   int operator()(const Point& x) const {
     const Vec3d p{x.x(), x.y(), x.z()};
@@ -167,22 +170,55 @@ public:
     last_ = hit;
     const Vec3d out = p - last_.point;
     if (dot(out, out) >= wall_ * wall_ || dot(out, pseudo_normal(s_, n_, last_)) >= 0) return 0;
-    return 1 + s_.region[size_t(last_.triangle)];
+    const int region = s_.region[size_t(last_.triangle)];
+    return reach_ > 0 && near_other(p, hit, region, reach_) ? 0 : 1 + region;
+  }
+
+  // Whether p, in the shell with a clearance, lies within about `reach` of the place
+  // where the regions' solids meet (to mesh finer there).
+  bool near_cut(const Point& x, double reach) const {
+    const Vec3d p{x.x(), x.y(), x.z()};
+    const ClosestPoints::Hit hit = closest_.closest_hit(p, last_, wall_ + reach);
+    if (hit.triangle < 0) return false;
+    last_ = hit;
+    return near_other(p, hit, s_.region[size_t(hit.triangle)], reach);
   }
 
 private:
-  static PolygonMesh surface_of(const PaintedSurface& s) {
+  static PolygonMesh surface_of(const PaintedSurface& s, int region) { // 2: both
     PolygonMesh m;
     m.positions.assign(s.positions.begin(), s.positions.end());
-    for (const Triangle& t : s.triangles) m.add_face(t);
+    for (size_t t = 0; t < s.triangles.size(); ++t)
+      if (region == 2 || s.region[t] == region) m.add_face(s.triangles[t]);
     return m;
+  }
+
+  // Whether a point within `reach` of p could be nearer the other region than p's
+  // nearest point of the surface, `hit` (in `region`): whether p lies within `reach` of
+  // the plane halfway between that point and some point of the other region (tried at
+  // each triangle's point nearest p and its corners). The points left out of both solids
+  // so are those within `reach` of where they would meet (more at the surface, where that
+  // plane lies halfway to the cut: twice `reach` from the cut), so the solids lie twice
+  // `reach` apart.
+  bool near_other(Vec3d p, const ClosestPoints::Hit& hit, int region, double reach) const {
+    const Vec3d a = hit.point;
+    const double d = norm(p - a);
+    const auto near = [&](Vec3d y) { return dot(p - y, p - y) - d * d < 2 * reach * norm(y - a); };
+    // |p - y|² - d² < 2 reach |a - y| <= 2 reach (d + |p - y|): y lies within d + 2 reach.
+    return regions_[1 - size_t(region)].any_near(p, d + 2 * reach, [&](Vec3d closest, const std::array<Vec3d, 3>& corners) {
+      return near(closest) || near(corners[0]) || near(corners[1]) || near(corners[2]);
+    });
   }
 
   const PaintedSurface& s_;
   const Normals& n_;
-  double wall_;
+  // With a clearance, 0.3 of it (near_other): the solids lie 0.6 of it apart, which the
+  // sampled walls (each within a tenth of it of where it should be) keep above 0.45.
+  double wall_, reach_;
   ClosestPoints closest_;
-  mutable ClosestPoints::Hit last_; // the mesher asks about points near each other in turn
+  std::array<ClosestPoints, 2> regions_; // each region's triangles, with a clearance
+  // The mesher asks about points near each other in turn.
+  mutable ClosestPoints::Hit last_;
 };
 
 // Points on both sides of the wall, a few to a wall's width: the mesher only finds a
@@ -246,10 +282,48 @@ void seed(C3t3& c3t3, const Domain& domain, const PaintedSurface& s, const Norma
 
 int label_of(const C3t3& c3t3, Tr::Cell_handle c) { return c3t3.is_in_complex(c) ? c3t3.subdomain_index(c) : 0; }
 
-void set_label(C3t3& c3t3, Tr::Cell_handle cell, int label) {
-  if (c3t3.triangulation().is_infinite(cell) || label_of(c3t3, cell) == label) return;
+// The labels of the cells round each corner of `cell`, as bits (bit k for label k).
+unsigned labels_round(const C3t3& c3t3, Tr::Cell_handle cell) {
+  unsigned labels = 0;
+  std::vector<Tr::Cell_handle> star;
+  for (int i = 0; i < 4; ++i) {
+    star.clear();
+    c3t3.triangulation().incident_cells(cell->vertex(i), std::back_inserter(star));
+    for (const Tr::Cell_handle c : star) labels |= 1u << label_of(c3t3, c);
+  }
+  return labels;
+}
+
+// Relabels a cell; with pieces kept `apart`, never to touch the other solid, even at a
+// corner. Returns whether it did.
+bool set_label(C3t3& c3t3, Tr::Cell_handle cell, int label, bool apart) {
+  if (c3t3.triangulation().is_infinite(cell) || label_of(c3t3, cell) == label) return false;
+  if (apart && label != 0 && (labels_round(c3t3, cell) >> (3 - label) & 1)) return false;
   if (c3t3.is_in_complex(cell)) c3t3.remove_from_complex(cell);
   if (label != 0) c3t3.add_to_complex(cell, label);
+  return true;
+}
+
+// With pieces kept apart: where the two solids' cells still meet, at a facet, an edge or
+// a corner (the gap between them narrower than the cells there), the cells round the
+// corner of the solid with fewer there leave it. Returns whether there were any.
+bool separate(C3t3& c3t3) {
+  const Tr& tr = c3t3.triangulation();
+  std::vector<std::pair<Tr::Cell_handle, int>> relabel;
+  std::vector<Tr::Cell_handle> star;
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+    star.clear();
+    tr.incident_cells(v, std::back_inserter(star));
+    std::array<int, 3> count{};
+    for (const Tr::Cell_handle c : star) ++count[size_t(label_of(c3t3, c))];
+    if (count[1] == 0 || count[2] == 0) continue;
+    const int fewer = count[1] < count[2] ? 1 : 2;
+    for (const Tr::Cell_handle c : star)
+      if (label_of(c3t3, c) == fewer) relabel.emplace_back(c, 0);
+  }
+  bool changed = false;
+  for (const auto& [cell, label] : relabel) changed |= set_label(c3t3, cell, label, true);
+  return changed;
 }
 
 // The label most of these cells have (the higher of a tie).
@@ -281,11 +355,11 @@ bool split(const C3t3& c3t3, std::span<const Tr::Cell_handle> cells, unsigned la
   return std::find(reached.begin(), reached.end(), 0) != reached.end();
 }
 
-// Where a solid's cells, or the shell's, meet only along an edge (a neck of a region
-// narrower than the cells), the cells round the edge take the label most of them have,
-// until none is left. Returns whether it relabelled any; throws TopologyError when that
+// Where a solid's cells, or (unless the pieces are kept apart) the shell's, meet only
+// along an edge (a neck of a region narrower than the cells), the cells round the edge
+// take the label most of them have, until none is left. Returns whether it relabelled any; throws TopologyError when that
 // does not end within a few rounds.
-bool unpinch(C3t3& c3t3) {
+bool unpinch(C3t3& c3t3, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::unordered_map<const void*, size_t> order; // of the vertices, not of their addresses
   for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) order.emplace(&*v, order.size());
@@ -304,14 +378,15 @@ bool unpinch(C3t3& c3t3) {
         std::vector<Tr::Cell_handle> ring;
         auto around = tr.incident_cells(Tr::Edge(c, i, j)), first = around;
         do ring.push_back(around); while (++around != first);
-        if (!split(c3t3, ring, 0b010) && !split(c3t3, ring, 0b100) && !split(c3t3, ring, 0b110)) continue;
+        if (!split(c3t3, ring, 0b010) && !split(c3t3, ring, 0b100) && (apart || !split(c3t3, ring, 0b110))) continue;
         const int label = most_common(c3t3, ring);
         for (const Tr::Cell_handle r : ring) relabel.emplace_back(r, label);
       }
     }
-    if (relabel.empty()) return changed;
+    bool relabelled = false;
+    for (const auto& [cell, label] : relabel) relabelled |= set_label(c3t3, cell, label, apart);
+    if (!relabelled) return changed;
     changed = true;
-    for (const auto& [cell, label] : relabel) set_label(c3t3, cell, label);
   }
   throw TopologyError("shell: the sampled solids still touch themselves along edges (a thinner --shell may not)");
 }
@@ -320,7 +395,7 @@ bool unpinch(C3t3& c3t3) {
 // group (the shell's surface meets itself there at a point: a crease or a cavity's tip
 // narrower than a cell), all but the largest group take the label most solid cells
 // round the corner have. Returns whether there were any.
-bool fill_outside_tips(C3t3& c3t3) {
+bool fill_outside_tips(C3t3& c3t3, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::vector<std::pair<Tr::Cell_handle, int>> relabel;
   std::vector<Tr::Cell_handle> star, outside;
@@ -357,8 +432,9 @@ bool fill_outside_tips(C3t3& c3t3) {
     for (size_t i = 0; i < outside.size(); ++i)
       if (group[i] != largest) relabel.emplace_back(outside[i], label);
   }
-  for (const auto& [cell, label] : relabel) set_label(c3t3, cell, label);
-  return !relabel.empty();
+  bool changed = false;
+  for (const auto& [cell, label] : relabel) changed |= set_label(c3t3, cell, label, apart);
+  return changed;
 }
 
 // How many pieces of at least `area` each colour region of the surface is in (triangles
@@ -391,7 +467,7 @@ std::array<size_t, 2> pieces_of(const PaintedSurface& s, const Normals& n, doubl
 // solid's groups beyond the largest as many as its colour region has pieces a cell or
 // more wide on the surface (`solid_pieces`) if small, take their neighbours' label.
 // Returns whether there were any.
-bool drop_crumbs(C3t3& c3t3, std::array<size_t, 2> solid_pieces) {
+bool drop_crumbs(C3t3& c3t3, std::array<size_t, 2> solid_pieces, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::unordered_map<const void*, uint8_t> reached;
   std::array<std::vector<std::vector<Tr::Cell_handle>>, 3> groups; // by label
@@ -423,8 +499,9 @@ bool drop_crumbs(C3t3& c3t3, std::array<size_t, 2> solid_pieces) {
       for (const Tr::Cell_handle m : groups[k][g]) relabel.emplace_back(m, label);
     }
   }
-  for (const auto& [cell, label] : relabel) set_label(c3t3, cell, label);
-  return !relabel.empty();
+  bool changed = false;
+  for (const auto& [cell, label] : relabel) changed |= set_label(c3t3, cell, label, apart);
+  return changed;
 }
 
 double volume_of(const PolygonMesh& m) {
@@ -638,9 +715,10 @@ std::vector<std::pair<Tr::Vertex_handle, int>> part_pinched_corners(std::array<B
 
 } // namespace
 
-SplitShell sampled_shell(const PaintedSurface& s, double wall) {
+SplitShell sampled_shell(const PaintedSurface& s, double wall, double clearance) {
+  const bool apart = clearance > 0;
   const Normals n = normals_of(s);
-  const Labels labels(s, n, wall);
+  const Labels labels(s, n, wall, clearance);
   Vec3d low{INFINITY, INFINITY, INFINITY}, high = low * -1;
   for (const Vec3 p : s.positions) {
     low = {std::min(low.x, double(p.x)), std::min(low.y, double(p.y)), std::min(low.z, double(p.z))};
@@ -652,13 +730,23 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
   const std::function<int(const Point&)> label = std::cref(labels);
   Domain domain(label, CGAL::Bbox_3(low.x - margin, low.y - margin, low.z - margin, high.x + margin, high.y + margin, high.z + margin),
                 0.01 * wall / radius, CGAL::Null_subdomain_index(), &random);
-  const std::vector<std::vector<Point>> features = features_of(s, n);
+  const std::vector<std::vector<Point>> features = features_of(s, n, !apart);
   domain.add_features(features.begin(), features.end());
   namespace p = CGAL::parameters;
   // Facets about a wall across (finer only where the surface curves), within a tenth of
   // a wall of it; the points found on the surface within a hundredth of a wall.
   const Criteria criteria(p::facet_angle = 25, p::facet_size = wall, p::facet_distance = 0.1 * wall,
                           p::cell_radius_edge_ratio = 3, p::cell_size = wall);
+  // With a clearance, cells as small as it in and near the gap, so that the gap is cells
+  // wide and its walls lie within a tenth of it of where they should.
+  const auto sized = [&](double coarse, double near) {
+    return [&labels, coarse, near, clearance](const Point& x, int, const Domain::Index&) {
+      return labels.near_cut(x, 1.5 * clearance) ? near : coarse;
+    };
+  };
+  const Criteria apart_criteria(p::facet_angle = 25, p::facet_size = sized(wall, clearance),
+                                p::facet_distance = sized(0.1 * wall, 0.25 * clearance), p::cell_radius_edge_ratio = 3,
+                                p::cell_size = sized(wall, clearance));
   C3t3 c3t3;
   // The kept edges protected by balls half a wall across, down to a sixteenth of one where
   // they come near each other (without that floor, edges that nearly touch are protected
@@ -666,7 +754,7 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
   const auto edge_size = [&](const Point&, int, const Domain::Index&) { return wall / 2; };
   CGAL::Mesh_3::Protect_edges_sizing_field<C3t3, Domain, decltype(edge_size)>(c3t3, domain, edge_size, wall / 16)();
   seed(c3t3, domain, s, n, wall, wall);
-  CGAL::refine_mesh_3(c3t3, domain, criteria, p::no_perturb(), p::no_exude(), p::no_reset_c3t3());
+  CGAL::refine_mesh_3(c3t3, domain, apart ? apart_criteria : criteria, p::no_perturb(), p::no_exude(), p::no_reset_c3t3());
   // The cells' labels mended until each solid's boundary, and the shell's, is a closed
   // surface: along edges and at corners of the shell's surface, and at corners where a
   // solid's cones would stay joined by the other's, by relabelling; at the other corners,
@@ -675,7 +763,8 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
   std::array<Boundary, 2> solids;
   for (int round = 0;; ++round) {
     for (int pass = 0; pass < 8; ++pass)
-      if (!(drop_crumbs(c3t3, pieces) | fill_outside_tips(c3t3) | unpinch(c3t3))) break;
+      if (!((apart && separate(c3t3)) | drop_crumbs(c3t3, pieces, apart) | fill_outside_tips(c3t3, apart) | unpinch(c3t3, apart)))
+        break;
     for (int k = 0; k < 2; ++k) {
       solids[size_t(k)] = boundary_of(c3t3, 2u << k);
       const PolygonMesh& solid = solids[size_t(k)].mesh;
@@ -699,7 +788,7 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
       std::vector<Tr::Cell_handle> star;
       c3t3.triangulation().incident_cells(v, std::back_inserter(star));
       for (const Tr::Cell_handle c : star)
-        if (label_of(c3t3, c) == 3 - k) set_label(c3t3, c, k);
+        if (label_of(c3t3, c) == 3 - k) set_label(c3t3, c, k, apart);
     }
   }
   SplitShell out;
@@ -710,6 +799,12 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall) {
                           place(solid.positions[size_t(solid.face(crossing[0])[0])]));
     out.volumes[size_t(k)] = volume_of(solid);
     out.solids[size_t(k)] = std::move(solid);
+  }
+  if (apart) {
+    measure_apart(out, 0);
+    if (out.apart < 0.45 * clearance)
+      throw TopologyError("shell: the sampled pieces come within " + std::to_string(out.apart) + " of each other near " +
+                          place(out.apart_at) + ", less than 0.45 of the clearance (a wider --clearance may not)");
   }
   out.thinnest = wall;
   out.sampled = true;

@@ -28,10 +28,17 @@ struct PaintedSurface {
 // common boundary and the surface's own kept as edges), seeded on both sides of the wall,
 // so that no part of a thin wall is missed; where a region's neck is narrower than the
 // cells, the cells are relabelled or their corners parted (by a twentieth of a cell) so
-// that each solid, and the shell they make, is a closed surface. Deterministic. Uses
-// `thickness` only (no clearance). Throws TopologyError when a solid is not one closed,
-// outward surface clear of itself.
-SplitShell sampled_shell(const PaintedSurface& surface, double thickness);
+// that each solid, and the shell they make, is a closed surface. With a clearance > 0,
+// the points near where the two solids would meet are left out of both (0.6 of it from the
+// cut on the surface, 0.3 of it from the middle of a thin part), the cells there as small
+// as the clearance, and the solids (no longer meeting) measured apart (SplitShell::apart).
+// Deterministic. Throws TopologyError when a solid is not one closed, outward surface
+// clear of itself, or the pieces come nearer than 0.45 of the clearance.
+SplitShell sampled_shell(const PaintedSurface& surface, double thickness, double clearance);
+
+// The least distance from a corner or side midpoint of either solid's faces to the other
+// (out.apart, out.apart_at), and per solid the faces with such a point nearer than `near`.
+std::array<std::vector<int32_t>, 2> measure_apart(SplitShell& out, double near);
 
 // A point as the shells' messages name it: "(x, y, z)".
 std::string place(Vec3 p);

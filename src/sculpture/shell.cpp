@@ -409,30 +409,10 @@ std::vector<int32_t> draw_apart(SplitShell& out, const Duotone& duotone, TileSty
                           place(a.positions[size_t(a.triangles[size_t(from[size_t(k)][size_t(crossing[0])])][0])]) +
                           " (a smaller --clearance or a coarser --spacing may not)");
   }
-  out.apart = INFINITY;
+  const std::array<std::vector<int32_t>, 2> nearer = measure_apart(out, near);
   std::vector<int32_t> quads;
-  for (int k = 0; k < 2; ++k) {
-    const PolygonMesh& solid = out.solids[size_t(k)];
-    const PolygonMesh& other = out.solids[size_t(1 - k)];
-    std::vector<Triangle> triangles;
-    for (int32_t f = 0; f < other.num_faces(); ++f) triangles.push_back({other.face(f)[0], other.face(f)[1], other.face(f)[2]});
-    const Distance to_other(other.positions, triangles);
-    // Each face's corners and the midpoints of its sides (where two slanted walls come
-    // nearer than their corners do).
-    for (int32_t f = 0; f < solid.num_faces(); ++f) {
-      const std::span<const int32_t> t = solid.face(f);
-      bool close = false;
-      for (size_t i = 0; i < 3; ++i) {
-        const Vec3d p = to_double(solid.positions[size_t(t[i])]), q = to_double(solid.positions[size_t(t[(i + 1) % 3])]);
-        for (const Vec3d x : {p, (p + q) * 0.5}) {
-          const double d = to_other(x);
-          if (d < out.apart) out.apart = d, out.apart_at = to_float(x);
-          close = close || d < near;
-        }
-      }
-      if (close) quads.push_back(a.quad[size_t(from[size_t(k)][size_t(f)])]);
-    }
-  }
+  for (int k = 0; k < 2; ++k)
+    for (const int32_t f : nearer[size_t(k)]) quads.push_back(a.quad[size_t(from[size_t(k)][size_t(f)])]);
   std::sort(quads.begin(), quads.end());
   quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
   return quads;
@@ -560,6 +540,34 @@ SplitShell quad_shell(const Duotone& duotone, TileStyle style, const ShellOption
 
 } // namespace
 
+std::array<std::vector<int32_t>, 2> measure_apart(SplitShell& out, double near) {
+  out.apart = INFINITY;
+  std::array<std::vector<int32_t>, 2> nearer;
+  for (int k = 0; k < 2; ++k) {
+    const PolygonMesh& solid = out.solids[size_t(k)];
+    const PolygonMesh& other = out.solids[size_t(1 - k)];
+    std::vector<Triangle> triangles;
+    for (int32_t f = 0; f < other.num_faces(); ++f) triangles.push_back({other.face(f)[0], other.face(f)[1], other.face(f)[2]});
+    const Distance to_other(other.positions, triangles);
+    // Each face's corners and the midpoints of its sides (where two slanted walls come
+    // nearer than their corners do).
+    for (int32_t f = 0; f < solid.num_faces(); ++f) {
+      const std::span<const int32_t> t = solid.face(f);
+      bool close = false;
+      for (size_t i = 0; i < 3; ++i) {
+        const Vec3d p = to_double(solid.positions[size_t(t[i])]), q = to_double(solid.positions[size_t(t[(i + 1) % 3])]);
+        for (const Vec3d x : {p, (p + q) * 0.5}) {
+          const double d = to_other(x);
+          if (d < out.apart) out.apart = d, out.apart_at = to_float(x);
+          close = close || d < near;
+        }
+      }
+      if (close) nearer[size_t(k)].push_back(f);
+    }
+  }
+  return nearer;
+}
+
 std::string place(Vec3 p) {
   return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
 }
@@ -579,12 +587,9 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
   const std::vector<Side> sides = sides_of(s); // again: orient() turned triangles round
   try {
     return quad_shell(duotone, style, options, s, sides);
-  } catch (const TopologyError& e) {
-    if (options.clearance > 0)
-      throw TopologyError(std::string(e.what()) + "; where no wall follows the quads Meander samples the shell, but "
-                          "cannot draw a sampled shell's pieces apart yet: without --clearance it prints in two colours");
+  } catch (const TopologyError&) {
   }
-  return sampled_shell({s.positions, s.triangles, s.region}, h);
+  return sampled_shell({s.positions, s.triangles, s.region}, h, options.clearance);
 }
 
 } // namespace meander
