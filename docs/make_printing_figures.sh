@@ -27,3 +27,7 @@ trap 'rm -rf "$OUT"' EXIT
   -o "$OUT/bunny.3mf" --parts "$OUT/bunny_1.ply,$OUT/bunny_2.ply" \
   --png images/printing_shell_bunny.png --size 900x600 --fit
 "$MEANDER" render "$OUT/bunny_1.ply" -o images/printing_shell_bunny_piece.png --size 900x600 --fit
+# The same with a 0.3 mm gap, to print the pieces apart (minutes: the gap is sampled finely).
+"$MEANDER" duotone "$MESHES/bunny_closed.off" --model-size 100mm --spacing 4mm --shell 1.5mm --clearance 0.3mm \
+  -o "$OUT/bunny_apart.3mf" --parts "$OUT/bunny_apart_1.stl,$OUT/bunny_apart_2.stl"
+"$MEANDER" render "$OUT/bunny_apart_1.stl" -o images/printing_apart_bunny_piece.png --size 900x600 --fit

@@ -178,10 +178,11 @@ public:
   // where the regions' solids meet (to mesh finer there).
   bool near_cut(const Point& x, double reach) const {
     const Vec3d p{x.x(), x.y(), x.z()};
+    if (p == near_.first) return near_.second; // the sizes of a facet asked in turn
     const ClosestPoints::Hit hit = closest_.closest_hit(p, last_, wall_ + reach);
-    if (hit.triangle < 0) return false;
-    last_ = hit;
-    return near_other(p, hit, s_.region[size_t(hit.triangle)], reach);
+    if (hit.triangle >= 0) last_ = hit;
+    near_ = {p, hit.triangle >= 0 && near_other(p, hit, s_.region[size_t(hit.triangle)], reach)};
+    return near_.second;
   }
 
 private:
@@ -212,13 +213,14 @@ private:
 
   const PaintedSurface& s_;
   const Normals& n_;
-  // With a clearance, 0.3 of it (near_other): the solids lie 0.6 of it apart, which the
-  // sampled walls (each within a tenth of it of where it should be) keep above 0.45.
+  // With a clearance, 0.3 of it (near_other): the solids lie 0.6 of it apart, a margin
+  // for the sampled walls, which lie a little off where they should, above 0.45.
   double wall_, reach_;
   ClosestPoints closest_;
   std::array<ClosestPoints, 2> regions_; // each region's triangles, with a clearance
   // The mesher asks about points near each other in turn.
   mutable ClosestPoints::Hit last_;
+  mutable std::pair<Vec3d, bool> near_{Vec3d{NAN, NAN, NAN}, false};
 };
 
 // Points on both sides of the wall, a few to a wall's width: the mesher only finds a
@@ -306,7 +308,7 @@ bool set_label(C3t3& c3t3, Tr::Cell_handle cell, int label, bool apart) {
 
 // With pieces kept apart: where the two solids' cells still meet, at a facet, an edge or
 // a corner (the gap between them narrower than the cells there), the cells round the
-// corner of the solid with fewer there leave it. Returns whether there were any.
+// corner of the solid with fewer there leave it. Returns whether it relabelled any.
 bool separate(C3t3& c3t3) {
   const Tr& tr = c3t3.triangulation();
   std::vector<std::pair<Tr::Cell_handle, int>> relabel;
@@ -357,8 +359,8 @@ bool split(const C3t3& c3t3, std::span<const Tr::Cell_handle> cells, unsigned la
 
 // Where a solid's cells, or (unless the pieces are kept apart) the shell's, meet only
 // along an edge (a neck of a region narrower than the cells), the cells round the edge
-// take the label most of them have, until none is left. Returns whether it relabelled any; throws TopologyError when that
-// does not end within a few rounds.
+// take the label most of them have, until none is left. Returns whether it relabelled
+// any; throws TopologyError when that does not end within a few rounds.
 bool unpinch(C3t3& c3t3, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::unordered_map<const void*, size_t> order; // of the vertices, not of their addresses
@@ -394,7 +396,7 @@ bool unpinch(C3t3& c3t3, bool apart) {
 // Where the cells outside the shell (or under it) round a corner are in more than one
 // group (the shell's surface meets itself there at a point: a crease or a cavity's tip
 // narrower than a cell), all but the largest group take the label most solid cells
-// round the corner have. Returns whether there were any.
+// round the corner have. Returns whether it relabelled any.
 bool fill_outside_tips(C3t3& c3t3, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::vector<std::pair<Tr::Cell_handle, int>> relabel;
@@ -466,7 +468,7 @@ std::array<size_t, 2> pieces_of(const PaintedSurface& s, const Normals& n, doubl
 // or a neck narrower than the cells cut off, a pocket left inside a solid), and a
 // solid's groups beyond the largest as many as its colour region has pieces a cell or
 // more wide on the surface (`solid_pieces`) if small, take their neighbours' label.
-// Returns whether there were any.
+// Returns whether it relabelled any.
 bool drop_crumbs(C3t3& c3t3, std::array<size_t, 2> solid_pieces, bool apart) {
   const Tr& tr = c3t3.triangulation();
   std::unordered_map<const void*, uint8_t> reached;
@@ -737,8 +739,9 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall, double clearance)
   // a wall of it; the points found on the surface within a hundredth of a wall.
   const Criteria criteria(p::facet_angle = 25, p::facet_size = wall, p::facet_distance = 0.1 * wall,
                           p::cell_radius_edge_ratio = 3, p::cell_size = wall);
-  // With a clearance, cells as small as it in and near the gap, so that the gap is cells
-  // wide and its walls lie within a tenth of it of where they should.
+  // With a clearance, cells as small as it in and near the gap (within about 1.5 of it of
+  // where the solids would meet), so that the gap is cells wide, and facets within a
+  // quarter of it of their surface there.
   const auto sized = [&](double coarse, double near) {
     return [&labels, coarse, near, clearance](const Point& x, int, const Domain::Index&) {
       return labels.near_cut(x, 1.5 * clearance) ? near : coarse;
