@@ -174,14 +174,14 @@ public:
     return reach_ > 0 && near_other(p, hit, region, reach_) ? 0 : 1 + region;
   }
 
-  // Whether p, in the shell with a clearance, lies within about `reach` of the place
-  // where the regions' solids meet (to mesh finer there).
-  bool near_cut(const Point& x, double reach) const {
+  // How deep x lies under the surface if within about `reach` of where the regions'
+  // solids would meet (to mesh finer there), else -1.
+  double near_cut(const Point& x, double reach) const {
     const Vec3d p{x.x(), x.y(), x.z()};
     if (p == near_.first) return near_.second; // the sizes of a facet asked in turn
     const ClosestPoints::Hit hit = closest_.closest_hit(p, last_, wall_ + reach);
     if (hit.triangle >= 0) last_ = hit;
-    near_ = {p, hit.triangle >= 0 && near_other(p, hit, s_.region[size_t(hit.triangle)], reach)};
+    near_ = {p, hit.triangle >= 0 && near_other(p, hit, s_.region[size_t(hit.triangle)], reach) ? norm(p - hit.point) : -1.0};
     return near_.second;
   }
 
@@ -214,13 +214,13 @@ private:
   const PaintedSurface& s_;
   const Normals& n_;
   // With a clearance, 0.3 of it (near_other): the solids lie 0.6 of it apart, a margin
-  // for the sampled walls, which lie a little off where they should, above 0.45.
+  // for the sampled walls (within a tenth of it of where they should be), above 0.45.
   double wall_, reach_;
   ClosestPoints closest_;
   std::array<ClosestPoints, 2> regions_; // each region's triangles, with a clearance
   // The mesher asks about points near each other in turn.
   mutable ClosestPoints::Hit last_;
-  mutable std::pair<Vec3d, bool> near_{Vec3d{NAN, NAN, NAN}, false};
+  mutable std::pair<Vec3d, double> near_{Vec3d{NAN, NAN, NAN}, -1};
 };
 
 // Points on both sides of the wall, a few to a wall's width: the mesher only finds a
@@ -740,16 +740,17 @@ SplitShell sampled_shell(const PaintedSurface& s, double wall, double clearance)
   const Criteria criteria(p::facet_angle = 25, p::facet_size = wall, p::facet_distance = 0.1 * wall,
                           p::cell_radius_edge_ratio = 3, p::cell_size = wall);
   // With a clearance, cells as small as it in and near the gap (within about 1.5 of it of
-  // where the solids would meet), so that the gap is cells wide, and facets within a
-  // quarter of it of their surface there.
-  const auto sized = [&](double coarse, double near) {
-    return [&labels, coarse, near, clearance](const Point& x, int, const Domain::Index&) {
-      return labels.near_cut(x, 1.5 * clearance) ? near : coarse;
-    };
+  // where the solids would meet), so that the gap is cells wide, and facets within a tenth
+  // of it of the gap's walls (the curved outside near the cut, more costly to follow that
+  // closely and moving no wall sideways, within a quarter).
+  const auto near = [&labels, clearance](const Point& x) { return labels.near_cut(x, 1.5 * clearance); };
+  const auto size = [near, wall, clearance](const Point& x, int, const Domain::Index&) { return near(x) >= 0 ? clearance : wall; };
+  const auto distance = [near, wall, clearance](const Point& x, int, const Domain::Index&) {
+    const double depth = near(x);
+    return depth < 0 ? 0.1 * wall : depth < 0.25 * clearance ? 0.25 * clearance : 0.1 * clearance;
   };
-  const Criteria apart_criteria(p::facet_angle = 25, p::facet_size = sized(wall, clearance),
-                                p::facet_distance = sized(0.1 * wall, 0.25 * clearance), p::cell_radius_edge_ratio = 3,
-                                p::cell_size = sized(wall, clearance));
+  const Criteria apart_criteria(p::facet_angle = 25, p::facet_size = size, p::facet_distance = distance,
+                                p::cell_radius_edge_ratio = 3, p::cell_size = size);
   C3t3 c3t3;
   // The kept edges protected by balls half a wall across, down to a sixteenth of one where
   // they come near each other (without that floor, edges that nearly touch are protected
