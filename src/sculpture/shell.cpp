@@ -588,6 +588,7 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
   try {
     return quad_shell(duotone, style, options, s, sides);
   } catch (const TopologyError&) {
+    // No wall follows the quads, or their pieces cannot be drawn apart: sampled instead.
   }
   return sampled_shell({s.positions, s.triangles, s.region}, h, options.clearance);
 }
