@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@ namespace meander {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 Duotone duotone_of(const PolygonMesh& mesh, const DuotoneJob& job) {
@@ -369,35 +371,45 @@ TEST(CliShell, AThinScanIsSampledIntoTheSameTwoColourPrintEveryRun) {
   EXPECT_EQ(info.objects, 1) << info.text;
 }
 
-// Two pieces to print apart, written to a.stl and b.stl in `dir`: each closed, outward and
-// clear of itself, never nearer the other than 0.45 of the clearance (CGAL measures), each
-// opened by PrusaSlicer as manifold (and, if `one_part`, one part).
-void expect_pieces_apart(const fs::path& dir, double clearance, bool one_part) {
+// Two pieces to print apart, written to a.stl and b.stl in `dir` by a command that printed
+// `summary`: each closed, outward and clear of itself, never nearer the other than 0.45
+// of the clearance (CGAL measures), each opened by PrusaSlicer as manifold and in as many
+// parts as the summary says (one unless it says "in A and B separate parts").
+void expect_pieces_apart(const fs::path& dir, double clearance, const std::string& summary) {
   const std::array<PolygonMesh, 2> parts{read_mesh(dir / "a.stl"), read_mesh(dir / "b.stl")};
   for (int k = 0; k < 2; ++k) {
     const test::CgalVerdict v = test::cgal_judge(parts[size_t(k)]);
     EXPECT_TRUE(v.closed && v.outward && !v.self_intersecting);
     EXPECT_GE(test::cgal_least_distance(parts[size_t(k)], parts[size_t(1 - k)]), 0.45 * clearance);
   }
+  std::array<int, 2> said{1, 1};
+  if (std::smatch m; std::regex_search(summary, m, std::regex("in (\\d+) and (\\d+) separate parts")))
+    said = {std::stoi(m[1]), std::stoi(m[2])};
   MEANDER_REQUIRE(test::prusa_slicer_found(), "prusa-slicer is not installed (Debian's prusa-slicer; make test installs it)");
-  for (const char* part : {"a.stl", "b.stl"}) {
-    const test::SlicerInfo info = test::prusa_slicer_info(dir / part);
+  for (int k = 0; k < 2; ++k) {
+    const test::SlicerInfo info = test::prusa_slicer_info(dir / (k == 0 ? "a.stl" : "b.stl"));
     ASSERT_EQ(info.status, 0) << info.text;
     EXPECT_TRUE(info.manifold) << info.text;
-    if (one_part) EXPECT_EQ(info.parts, 1) << info.text;
+    EXPECT_EQ(info.parts, said[size_t(k)]) << summary << "\n" << info.text;
   }
+}
+
+// Runs `meander duotone MESH ARGS -o print.3mf --parts a.stl,b.stl` in `dir`.
+test::CommandResult print_apart(const fs::path& dir, const char* mesh, std::vector<std::string> args) {
+  args.insert(args.begin(), {"duotone", (test::shared_meshes() / mesh).string()});
+  args.insert(args.end(), {"-o", (dir / "print.3mf").string(), "--parts", (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
+  return test::run_cli(args);
 }
 
 TEST(CliShell, AClearanceMakesTwoPiecesToPrintApart) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const fs::path dir = test::output_dir();
-  const test::CommandResult r = test::run_cli({"duotone", (test::shared_meshes() / "spot_triangulated.obj").string(),
-                                               "--model-size", "100mm", "--spacing", "5mm", "--shell", "1.5mm", "--clearance",
-                                               "0.3mm", "-o", (dir / "print.3mf").string(), "--parts",
-                                               (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
+  const test::CommandResult r =
+      print_apart(dir, "spot_triangulated.obj", {"--model-size", "100mm", "--spacing", "5mm", "--shell", "1.5mm", "--clearance", "0.3mm"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("apart"));
-  expect_pieces_apart(dir, 0.3, true);
+  EXPECT_THAT(r.err, Not(HasSubstr("separate parts")));
+  expect_pieces_apart(dir, 0.3, r.err);
 }
 
 // The same where no wall follows the quads (the kitten's ears at 40 mm): the shell is
@@ -406,14 +418,27 @@ TEST(CliShell, AClearanceMakesTwoPiecesToPrintApart) {
 TEST(CliShell, AThinScanIsSampledIntoTwoPiecesToPrintApart) {
   MEANDER_REQUIRE_SHARED_MESHES();
   const fs::path dir = test::output_dir();
-  const test::CommandResult r = test::run_cli({"duotone", (test::shared_meshes() / "kitten.off").string(), "--model-size", "40mm",
-                                               "--spacing", "4mm", "--shell", "1.5mm", "--clearance", "0.5mm", "-o",
-                                               (dir / "print.3mf").string(), "--parts",
-                                               (dir / "a.stl").string() + "," + (dir / "b.stl").string()});
+  const test::CommandResult r =
+      print_apart(dir, "kitten.off", {"--model-size", "40mm", "--spacing", "4mm", "--shell", "1.5mm", "--clearance", "0.5mm"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("the shell was sampled"));
   EXPECT_THAT(r.err, HasSubstr("apart"));
-  expect_pieces_apart(dir, 0.5, false);
+  expect_pieces_apart(dir, 0.5, r.err);
+}
+
+// Where the wall follows the quads but the gap would leave too little of the narrowest
+// (the bevelled cube's bevels, at its own density): sampled instead of refused. The
+// bevels' quads go into the gap, so each piece falls into its six faces' parts, as the
+// summary says.
+TEST(CliShell, QuadsTooSmallForTheGapAreSampled) {
+  MEANDER_REQUIRE_SHARED_MESHES();
+  const fs::path dir = test::output_dir();
+  const test::CommandResult r =
+      print_apart(dir, "beveledcube.obj", {"--model-size", "40mm", "--shell", "1mm", "--clearance", "2mm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("or its quads too small for the gap: the shell was sampled"));
+  EXPECT_THAT(r.err, HasSubstr("separate parts"));
+  expect_pieces_apart(dir, 2, r.err);
 }
 
 TEST(CliShell, RefusesBadRequestsWithoutOutput) {
@@ -435,9 +460,9 @@ TEST(CliShell, RefusesBadRequestsWithoutOutput) {
       {{"duotone", eight, "-o", out, "--model-size", "100mm", "--shell", "0.5mm"}, 2, "--shell"},
       {{"duotone", eight, "-o", out, "--shell", "2mm"}, 2, "unit"},
       {{"duotone", eight, "-o", out, "--clearance", "0.1"}, 2, "--clearance applies to a shell"},
-      // Made first, then measured: the icosahedron's 60 quads are made at once.
+      // The quads made first (the icosahedron's 60 at once), then measured.
       {{"duotone", (test::shared_meshes() / "icosahedron_binary.stl").string(), "-o", out, "--shell", "0.05", "--clearance", "1"},
-       2, "at most"},
+       2, "too wide for quads of 0.525731"},
       {{"duotone", (test::shared_meshes() / "moebius.obj").string(), "-o", out, "--quad", "dual-simplest", "--shell", "0.01"},
        1, "not orientable"},
   };

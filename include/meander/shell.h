@@ -39,10 +39,10 @@ struct SplitShell {
   // solid's faces to the other, and that point.
   double apart = 0;
   Vec3 apart_at;
-  // The wall could not follow the quads (the model is thinner than two walls, or folds
-  // too sharply, or the surface touches itself): the shell was sampled instead, solid
-  // where the model is thinner than two walls, its outside within a tenth of the wall of
-  // the surface.
+  // The wall could not follow the quads (the model is thinner than two walls, or folds too
+  // sharply, or the surface touches itself, or the gap is too wide for some quads): the
+  // shell was sampled instead, solid where the model is thinner than two walls, its
+  // outside within a tenth of the wall of the surface.
   bool sampled = false;
 };
 
@@ -59,17 +59,18 @@ struct SplitShell {
 // the clearance on each quad side, on the outside and on the inside, whichever side is
 // shorter), so the solids no longer meet: each has its own walls.
 // Where that inside still crosses itself or the outside (a part thinner than two walls
-// that folds sharply: a scan's ears), or the surface crosses or touches itself, the shell
-// is sampled instead (SplitShell::sampled: CGAL's Mesh_3, solid where the model is
-// thinner than two walls; seconds to a minute for a 100 mm model with a 1.5 mm wall,
-// minutes with a clearance, whose gap is meshed in cells as small as it; its pieces are
-// drawn back 0.6 of the clearance from the cut on the surface and kept 0.6 of it apart
-// across a thin part).
-// Deterministic. Throws ParameterError for a thickness that is not a positive number or
-// is below min_thickness, a negative clearance or one wider than 0.4 of a quad side;
-// TopologyError, naming a place, for a non-orientable surface (it has no inside: a
-// Möbius band), a sampled solid that touches or crosses itself, or, with a clearance,
-// pieces that cannot be drawn apart. O(n log n) for n
+// that folds sharply: a scan's ears), the surface crosses or touches itself, or the gap
+// would leave too little of some quads (over a fifth of one, or pieces drawn back at a
+// slant that still come too near), the shell is sampled instead (SplitShell::sampled:
+// CGAL's Mesh_3, solid where the model is thinner than two walls; seconds to a minute for
+// a 100 mm model with a 1.5 mm wall, minutes with a clearance, whose gap is meshed in
+// cells as small as it; its pieces are drawn back 0.6 of the clearance from the cut on the
+// surface and kept 0.6 of it apart across a thin part). Deterministic. Throws
+// ParameterError for a thickness that is not a positive number or is below min_thickness,
+// a negative clearance or one wider than a sixth of the quads' median side (the gap would
+// leave crumbs of the colours' bands); TopologyError, naming a place, for a non-orientable
+// surface (it has no inside: a Möbius band), a sampled solid that touches or crosses
+// itself, or, with a clearance, pieces that cannot be drawn apart. O(n log n) for n
 // triangles of the regions, plus the self-intersection searches (printability.h) of the
 // surface, each solid and the whole shell.
 SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOptions& options);

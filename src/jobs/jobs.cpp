@@ -1,5 +1,6 @@
 #include "meander/jobs.h"
 
+#include "meander/check.h"
 #include "meander/closest_points.h"
 #include "meander/connectivity.h"
 #include "meander/error.h"
@@ -304,15 +305,21 @@ std::string shell_summary(const SplitShell& shell, const DuotoneJob& job) {
   };
   const auto at = [&](Vec3 p) { return "(" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")"; };
   std::string text = "2 solids, one per colour, closed and outward: " + std::to_string(shell.solids[0].num_faces()) + " and " +
-                     std::to_string(shell.solids[1].num_faces()) + " triangles, volumes " + number(shell.volumes[0]) + " and " +
-                     number(shell.volumes[1]) +
-                     (job.clearance > 0 ? ", at least " + number(shell.apart) + " apart (at " + at(shell.apart_at) + "; clearance " +
-                                              number(job.clearance) + ")"
-                                        : "") +
-                     "; a wall of " + number(*job.shell);
+                     std::to_string(shell.solids[1].num_faces()) + " triangles, ";
+  // A piece in parts is printed as several: one for each of the model's parts, and with
+  // a clearance more where the gap cuts off a neck of a colour region narrower than it.
+  const std::array<size_t, 2> parts{inspect(shell.solids[0]).components.size(), inspect(shell.solids[1]).components.size()};
+  if (parts[0] > 1 || parts[1] > 1)
+    text += "in " + std::to_string(parts[0]) + " and " + std::to_string(parts[1]) + " separate parts" +
+            (job.clearance > 0 ? " (the model's own, or necks of a colour narrower than the gap)" : "") + ", ";
+  text += "volumes " + number(shell.volumes[0]) + " and " + number(shell.volumes[1]);
+  if (job.clearance > 0)
+    text += ", at least " + number(shell.apart) + " apart (at " + at(shell.apart_at) + "; clearance " + number(job.clearance) + ")";
+  text += "; a wall of " + number(*job.shell);
   if (shell.sampled)
     return text + ", solid where the model is thinner than two walls (too thin or too sharply folded for a wall " +
-           "that follows the quads: the shell was sampled, its outside within " + number(0.1 * *job.shell) + " of the surface).";
+           "that follows the quads" + (job.clearance > 0 ? ", or its quads too small for the gap" : "") +
+           ": the shell was sampled, its outside within " + number(0.1 * *job.shell) + " of the surface).";
   if (shell.reduced_corners == 0) return text + " everywhere.";
   text += ", thinner at " + std::to_string(shell.reduced_corners) +
           " quad corners (the model is thinner than two walls there, or bends sharply), down to " + number(shell.thinnest) +

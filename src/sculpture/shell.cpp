@@ -498,13 +498,10 @@ SplitShell quad_shell(const Duotone& duotone, TileStyle style, const ShellOption
   if (options.clearance > 0) {
     const std::vector<Vec3> at_inside = to_floats(inside);
     std::vector<float> gaps = duotone_gaps(duotone, style, m.positions, at_inside, options.clearance);
-    if (const auto widest = std::max_element(gaps.begin(), gaps.end()); *widest > 0.2f) {
-      const double most = 0.2 / *widest * options.clearance;
-      throw ParameterError("clearance", " (" + std::to_string(options.clearance) + ") is too wide for the quads near " +
-                                            place(m.positions[size_t(m.quads[size_t((widest - gaps.begin()) / 5)][0])]) +
-                                            " (a fifth of their size, where the curve meets their sides at a slant): at most " +
-                                            std::to_string(most) + " here, or a coarser --spacing");
-    }
+    // A gap over a fifth of its quad leaves too little of the quad: sampled instead.
+    if (const auto widest = std::max_element(gaps.begin(), gaps.end()); *widest > 0.2f)
+      throw TopologyError("shell: the clearance is too wide for the quads near " +
+                          place(m.positions[size_t(m.quads[size_t((widest - gaps.begin()) / 5)][0])]));
     for (int round = 0;; ++round) {
       const std::vector<int32_t> near = draw_apart(out, duotone, style, corners, at_inside, gaps, 0.45 * options.clearance);
       if (near.empty()) break;
@@ -580,6 +577,23 @@ SplitShell duotone_shell(const Duotone& duotone, TileStyle style, const ShellOpt
   if (!(options.min_thickness >= 0) || options.min_thickness > h)
     throw ParameterError("shell", " (" + std::to_string(h) + ") is thinner than the thinnest wall the printer makes (" +
                                       std::to_string(options.min_thickness) + ")");
+  if (options.clearance > 0) {
+    // The gap is about 1.2 of the clearance wide where sampled, and a colour's band about
+    // half a quad: past a sixth of the quads' usual side, the gap leaves crumbs.
+    const QuadMesh& m = duotone.quads;
+    std::vector<float> sides;
+    for (int32_t q = 0; q < m.num_quads(); ++q)
+      if (!m.is_half(q))
+        for (size_t k = 0; k < 4; ++k)
+          sides.push_back(float(norm(m.positions[size_t(m.quads[size_t(q)][k])] - m.positions[size_t(m.quads[size_t(q)][(k + 1) % 4])])));
+    if (sides.empty()) throw TopologyError("shell: the surface has no faces");
+    const auto middle = sides.begin() + std::ptrdiff_t(sides.size() / 2);
+    std::nth_element(sides.begin(), middle, sides.end());
+    if (const double most = *middle / 6; options.clearance > most)
+      throw ParameterError("clearance", " (" + std::to_string(options.clearance) + ") is too wide for quads of " +
+                                            std::to_string(*middle) + " (the gap would cut the colours' bands into crumbs): at most " +
+                                            std::to_string(most) + ", or a coarser --spacing");
+  }
   RegionOrigins origins;
   Surface s = weld(duotone_regions(duotone, style, duotone.quads.positions, &origins), origins);
   if (s.triangles.empty()) throw TopologyError("shell: the surface has no faces");
